@@ -1,0 +1,89 @@
+#include "course_args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+namespace rayform::cli {
+namespace {
+
+const std::set<std::string> course_flags = {"-input", "-size", "-output", "-depth", "-normals", "-dialect",
+                                            "-bounces", "-shadows", "-threads", "-quiet", "-albedo"};
+
+struct Args {
+  const std::vector<std::string>& v;
+  size_t i = 0;
+  std::string take(const std::string& flag, const char* what) {
+    if (i >= v.size()) throw UsageError(flag + " expects " + what);
+    return v[i++];
+  }
+  int integer(const std::string& flag, const char* what) {
+    std::string s = take(flag, what);
+    char* end = nullptr;
+    errno = 0;
+    long x = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || *end != '\0' || errno == ERANGE || x < -1000000000 || x > 1000000000)
+      throw UsageError(flag + " expects " + what + ", got '" + s + "'");
+    return int(x);
+  }
+  float real(const std::string& flag, const char* what) {
+    std::string s = take(flag, what);
+    char* end = nullptr;
+    double x = std::strtod(s.c_str(), &end);
+    if (s.empty() || *end != '\0' || !std::isfinite(x)) throw UsageError(flag + " expects " + what + ", got '" + s + "'");
+    return float(x);
+  }
+};
+
+}  // namespace
+
+bool is_course_command_line(const std::vector<std::string>& args) {
+  return !args.empty() && course_flags.count(args[0]) > 0;
+}
+
+RenderJob parse_course_command_line(const std::vector<std::string>& v) {
+  RenderJob job;
+  bool has_input = false, has_output = false, has_size = false;
+  Args a{v};
+  while (a.i < v.size()) {
+    std::string f = v[a.i++];
+    if (f == "-input") { job.input = a.take(f, "a scene file"); has_input = true; }
+    else if (f == "-output") { job.output = a.take(f, "an image file"); has_output = true; }
+    else if (f == "-size") {
+      job.width = a.integer(f, "a width and a height in pixels");
+      job.height = a.integer(f, "a width and a height in pixels");
+      if (job.width <= 0 || job.height <= 0)
+        throw UsageError("-size expects a positive width and height, got " + std::to_string(job.width) + " " +
+                         std::to_string(job.height));
+      has_size = true;
+    } else if (f == "-depth") {
+      DepthOutput d;
+      d.min = a.real(f, "MIN MAX FILE");
+      d.max = a.real(f, "MIN MAX FILE");
+      d.file = a.take(f, "MIN MAX FILE");
+      job.depth = d;
+    } else if (f == "-normals") job.normals = a.take(f, "an image file");
+    else if (f == "-albedo") job.albedo = a.take(f, "an image file");
+    else if (f == "-dialect") {
+      std::string d = a.take(f, "2012 or 2019");
+      if (d == "2012") job.dialect = CourseDialect::v2012;
+      else if (d == "2019") job.dialect = CourseDialect::v2019;
+      else throw UsageError("-dialect expects 2012 or 2019, got '" + d + "'");
+    } else if (f == "-bounces") {
+      job.bounces = a.integer(f, "a number of bounces");
+      if (job.bounces < 0) throw UsageError("-bounces expects a number >= 0");
+    } else if (f == "-shadows") job.shadows = true;
+    else if (f == "-threads") {
+      job.threads = a.integer(f, "a number of threads");
+      if (job.threads < 0) throw UsageError("-threads expects a number >= 0");
+    } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
+    else throw UsageError("unknown option '" + f + "'");
+  }
+  if (!has_input) throw UsageError("missing -input SCENE");
+  if (!has_output) throw UsageError("missing -output IMAGE");
+  if (!has_size) throw UsageError("missing -size WIDTH HEIGHT");
+  return job;
+}
+
+}  // namespace rayform::cli

@@ -1,0 +1,26 @@
+// The course's own command line, verbatim: single-dash flags in any order,
+//   -input F.txt -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
+//   [-dialect 2012|2019] [-bounces N] [-shadows]
+// (plus rayform's -threads N and -quiet). Unknown flags are errors.
+#pragma once
+
+#include "render_job.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rayform::cli {
+
+// A command-line mistake: reported with a hint to --help, exit status 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Whether the arguments use the course style (the first is one of its flags).
+bool is_course_command_line(const std::vector<std::string>& args);
+
+// Throws UsageError.
+RenderJob parse_course_command_line(const std::vector<std::string>& args);
+
+}  // namespace rayform::cli

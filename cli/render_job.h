@@ -1,0 +1,39 @@
+// One render from the command line: load, prepare, render, write outputs.
+// Shared by the course-compatible flags and the `render` subcommand.
+#pragma once
+
+#include "scene_io.h"
+
+#include <optional>
+#include <string>
+
+namespace rayform::cli {
+
+struct DepthOutput {
+  float min = 0.f, max = 1.f;
+  std::string file;
+};
+
+struct RenderJob {
+  std::string input;
+  std::string output;
+  int width = 200, height = 200;
+  std::optional<DepthOutput> depth;
+  std::string normals;  // empty: not written
+  std::string albedo;   // empty: not written
+  std::optional<CourseDialect> dialect;
+  int bounces = 0;
+  bool shadows = false;
+  int threads = 0;
+  int camera = 0;
+  bool generic = false;
+  bool quiet = false;
+};
+
+// Runs the job; throws rayform::Error with a message for the user.
+void run_render_job(const RenderJob& job);
+
+// Checks an output path before any work is done (known extension, folder exists).
+void check_output_path(const std::string& path, const char* what);
+
+}  // namespace rayform::cli

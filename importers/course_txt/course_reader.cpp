@@ -1,0 +1,424 @@
+#include "course_txt/course_reader.h"
+
+#include "course_txt/course_mesh.h"
+#include "course_txt/course_tokenizer.h"
+#include "scene/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace rayform {
+namespace fs = std::filesystem;
+namespace {
+
+class CourseParser {
+ public:
+  CourseParser(std::string_view text, const std::string& path, CourseDialect dialect)
+      : tokens_(text, path), path_(path), dialect_(dialect) {}
+
+  CourseScene parse() {
+    CourseScene out;
+    out.dialect = dialect_;
+    scene_.source_path = path_;
+    while (!tokens_.at_end()) {
+      Token t = tokens_.next();
+      if (t.text == "PerspectiveCamera") parse_camera();
+      else if (t.text == "Lights") parse_lights();
+      else if (t.text == "Background") parse_background();
+      else if (t.text == "Materials") parse_materials();
+      else if (t.text == "Group") {
+        if (scene_.root != invalid) warnings_.push_back(tokens_.where(t) + ": a second top-level Group replaces the first");
+        scene_.root = parse_group(t);
+      } else {
+        tokens_.fail(t, "expected PerspectiveCamera, Lights, Background, Materials or Group");
+      }
+    }
+    if (scene_.root == invalid) {
+      Node root;
+      root.name = "root";
+      scene_.nodes.push_back(root);
+      scene_.root = int(scene_.nodes.size()) - 1;
+      warnings_.push_back(path_ + ": the scene has no Group: nothing to render but the background");
+    }
+    if (scene_.cameras.empty()) throw Error(path_ + ": the scene has no PerspectiveCamera");
+    // Check every MaterialIndex against the final material count.
+    for (const auto& [node, token] : material_refs_)
+      if (scene_.nodes[node].material >= int(scene_.materials.size()))
+        tokens_.fail(token, "MaterialIndex " + std::to_string(scene_.nodes[node].material) + " is out of range: the scene has " +
+                                std::to_string(scene_.materials.size()) + " materials");
+    out.scene = std::move(scene_);
+    out.warnings = std::move(warnings_);
+    return out;
+  }
+
+ private:
+  // Reads `{ key value... }` with the keys in any order; `on_key` consumes the
+  // value of a key it knows and returns false for an unknown key.
+  template <class Fn>
+  void parse_block(const Token& opener, const char* expected_keys, Fn&& on_key) {
+    tokens_.expect("{", opener.text);
+    for (;;) {
+      Token k = tokens_.next_or_fail(std::string("'}' to close ") + opener.text + " opened at " + tokens_.line_col(opener));
+      if (k.text == "}") return;
+      if (!on_key(k)) tokens_.fail(k, std::string("expected one of ") + expected_keys + " or '}' in " + opener.text);
+    }
+  }
+
+  void parse_camera() {
+    Token opener = tokens_.last();
+    Camera c;
+    c.aspect = Camera::Aspect::stretch;
+    c.up_vector = dialect_ == CourseDialect::v2019 ? Camera::UpVector::raw : Camera::UpVector::orthonormal;
+    bool has_angle = false;
+    parse_block(opener, "center, direction, up, angle", [&](const Token& k) {
+      if (k.text == "center") c.center = tokens_.vec3_value();
+      else if (k.text == "direction") c.direction = tokens_.vec3_value();
+      else if (k.text == "up") c.up = tokens_.vec3_value();
+      else if (k.text == "angle") { c.fov_deg = tokens_.number(); has_angle = true; }
+      else return false;
+      return true;
+    });
+    if (glm::length(c.direction) == 0.f) tokens_.fail(opener, "camera direction must not be zero");
+    if (glm::length(glm::cross(c.direction, c.up)) == 0.f)
+      tokens_.fail(opener, "camera up must not be zero or parallel to the direction");
+    if (has_angle && !(c.fov_deg > 0.f && c.fov_deg < 180.f))
+      tokens_.fail(opener, "camera angle must lie strictly between 0 and 180 degrees");
+    scene_.cameras.assign(1, c);
+  }
+
+  void parse_lights() {
+    Token opener = tokens_.last();
+    tokens_.expect("{", "Lights");
+    tokens_.expect("numLights", "Lights");
+    Token count_token = tokens_.peek_token();
+    int n = tokens_.count();
+    std::vector<Light> lights;
+    for (;;) {
+      Token t = tokens_.next_or_fail("'}' to close Lights opened at " + tokens_.line_col(opener));
+      if (t.text == "}") break;
+      Light l;
+      if (t.text == "DirectionalLight") {
+        l.kind = Light::Kind::directional;
+        parse_block(t, "direction, color", [&](const Token& k) {
+          if (k.text == "direction") l.direction = tokens_.vec3_value();
+          else if (k.text == "color") l.color = tokens_.vec3_value();
+          else return false;
+          return true;
+        });
+        if (glm::length(l.direction) == 0.f) tokens_.fail(t, "light direction must not be zero");
+      } else if (t.text == "PointLight") {
+        l.kind = Light::Kind::point;
+        parse_block(t, "position, color, falloff", [&](const Token& k) {
+          if (k.text == "position") l.position = tokens_.vec3_value();
+          else if (k.text == "color") l.color = tokens_.vec3_value();
+          else if (k.text == "falloff") {
+            l.falloff = tokens_.number();
+            if (l.falloff < 0.f) tokens_.fail(tokens_.last(), "falloff must not be negative");
+          } else return false;
+          return true;
+        });
+        // Falloff attenuates only in the 2019 dialect.
+        if (dialect_ == CourseDialect::v2012) l.falloff = 0.f;
+      } else {
+        tokens_.fail(t, "expected DirectionalLight, PointLight or '}' in Lights");
+      }
+      lights.push_back(l);
+      if (int(lights.size()) > n) tokens_.fail(t, "more lights than numLights " + std::to_string(n) + " declares");
+    }
+    if (int(lights.size()) != n)
+      tokens_.fail(count_token, "numLights is " + std::to_string(n) + " but " + std::to_string(lights.size()) +
+                                    " lights follow");
+    scene_.lights = std::move(lights);
+  }
+
+  void parse_background() {
+    Token opener = tokens_.last();
+    parse_block(opener, "color, ambientLight, cubeMap", [&](const Token& k) {
+      if (k.text == "color") scene_.background.color = tokens_.vec3_value();
+      else if (k.text == "ambientLight") scene_.background.ambient = tokens_.vec3_value();
+      else if (k.text == "cubeMap") parse_cube_map();
+      else return false;
+      return true;
+    });
+  }
+
+  void parse_cube_map() {
+    Token t = tokens_.next_or_fail("a cube map folder after cubeMap");
+    scene_.background.cube_map_dir = t.text;
+    fs::path dir = resolve(t, t.text, "cube map folder");
+    // Faces in the order of Background::cube_map.
+    static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
+    for (int i = 0; i < 6; ++i) {
+      fs::path f = dir / (std::string(faces[i]) + ".png");
+      if (!fs::exists(f)) tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
+      Texture tex;
+      tex.name = faces[i];
+      tex.path = f.string();
+      tex.lookup = Texture::Lookup::course;
+      tex.wrap_u = tex.wrap_v = Texture::Wrap::clamp;
+      scene_.textures.push_back(tex);
+      scene_.background.cube_map[i] = int(scene_.textures.size()) - 1;
+    }
+  }
+
+  void parse_materials() {
+    Token opener = tokens_.last();
+    tokens_.expect("{", "Materials");
+    tokens_.expect("numMaterials", "Materials");
+    Token count_token = tokens_.peek_token();
+    int n = tokens_.count();
+    std::vector<Material> mats;
+    for (;;) {
+      Token t = tokens_.next_or_fail("'}' to close Materials opened at " + tokens_.line_col(opener));
+      if (t.text == "}") break;
+      if (t.text != "Material" && t.text != "PhongMaterial")
+        tokens_.fail(t, "expected Material, PhongMaterial or '}' in Materials");
+      Material m;
+      m.texture_modulates = false;
+      parse_block(t, "diffuseColor, specularColor, shininess, texture, bump, refractionIndex", [&](const Token& k) {
+        if (k.text == "diffuseColor") m.diffuse = tokens_.vec3_value();
+        else if (k.text == "specularColor") m.specular = tokens_.vec3_value();
+        else if (k.text == "shininess") m.shininess = tokens_.number();
+        else if (k.text == "refractionIndex") m.refraction_index = tokens_.number();
+        else if (k.text == "texture") m.diffuse_texture = texture(tokens_.next_or_fail("a texture file after texture"));
+        else if (k.text == "bump") m.bump_texture = texture(tokens_.next_or_fail("a bump map file after bump"));
+        else return false;
+        return true;
+      });
+      m.name = "material" + std::to_string(mats.size());
+      mats.push_back(m);
+      if (int(mats.size()) > n) tokens_.fail(t, "more materials than numMaterials " + std::to_string(n) + " declares");
+    }
+    if (int(mats.size()) != n)
+      tokens_.fail(count_token, "numMaterials is " + std::to_string(n) + " but " + std::to_string(mats.size()) +
+                                    " materials follow");
+    scene_.materials = std::move(mats);
+  }
+
+  int texture(const Token& file) {
+    fs::path p = resolve(file, file.text, "texture");
+    auto it = texture_cache_.find(p.string());
+    if (it != texture_cache_.end()) return it->second;
+    Texture t;
+    t.name = file.text;
+    t.path = p.string();
+    t.lookup = Texture::Lookup::course;
+    t.wrap_u = t.wrap_v = Texture::Wrap::clamp;
+    t.srgb = false;  // course colours are raw
+    scene_.textures.push_back(t);
+    int index = int(scene_.textures.size()) - 1;
+    texture_cache_[p.string()] = index;
+    return index;
+  }
+
+  // Path relative to the scene file's folder, then to the working directory.
+  fs::path resolve(const Token& t, const std::string& name, const char* what) {
+    fs::path p(name);
+    if (p.is_absolute()) {
+      if (fs::exists(p)) return p;
+    } else {
+      fs::path beside = fs::path(path_).parent_path() / p;
+      if (fs::exists(beside)) return beside;
+      if (fs::exists(p)) return p;
+    }
+    tokens_.fail(t, std::string("cannot find ") + what + " '" + name + "' (looked beside the scene file and in the working directory)");
+  }
+
+  int add_node(Node n) {
+    scene_.nodes.push_back(std::move(n));
+    return int(scene_.nodes.size()) - 1;
+  }
+
+  int parse_group(const Token& opener) {
+    tokens_.expect("{", "Group");
+    tokens_.expect("numObjects", "Group");
+    Token count_token = tokens_.peek_token();
+    int n = tokens_.count();
+    Node g;
+    g.kind = Node::Kind::group;
+    g.name = "group";
+    std::vector<int> children;
+    for (;;) {
+      Token t = tokens_.next_or_fail("'}' to close Group opened at " + tokens_.line_col(opener));
+      if (t.text == "}") break;
+      if (t.text == "MaterialIndex") {
+        Token v = tokens_.peek_token();
+        int k = tokens_.count();
+        current_material_ = k;
+        current_material_token_ = v;
+        continue;
+      }
+      children.push_back(parse_object(t));
+      if (int(children.size()) > n)
+        tokens_.fail(t, "more objects than numObjects " + std::to_string(n) + " declares");
+    }
+    if (int(children.size()) != n)
+      tokens_.fail(count_token, "numObjects is " + std::to_string(n) + " but the group holds " +
+                                    std::to_string(children.size()) + " objects");
+    g.children = std::move(children);
+    return add_node(std::move(g));
+  }
+
+  int shape_node(ShapeKind kind, int shape, const char* name) {
+    Node n;
+    n.kind = Node::Kind::shape;
+    n.name = name;
+    n.shape_kind = kind;
+    n.shape = shape;
+    n.material = current_material_;
+    int index = add_node(std::move(n));
+    if (current_material_ != invalid) material_refs_.push_back({index, current_material_token_});
+    return index;
+  }
+
+  int parse_object(const Token& t) {
+    if (t.text == "Group") return parse_group(t);
+    if (t.text == "Sphere") {
+      Sphere s;
+      bool has_radius = false;
+      parse_block(t, "center, radius", [&](const Token& k) {
+        if (k.text == "center") s.center = tokens_.vec3_value();
+        else if (k.text == "radius") { s.radius = tokens_.number(); has_radius = true; }
+        else return false;
+        return true;
+      });
+      if (has_radius && !(s.radius > 0.f)) tokens_.fail(t, "sphere radius must be positive");
+      scene_.spheres.push_back(s);
+      return shape_node(ShapeKind::sphere, int(scene_.spheres.size()) - 1, "sphere");
+    }
+    if (t.text == "Plane") {
+      Plane p;
+      parse_block(t, "normal, offset", [&](const Token& k) {
+        if (k.text == "normal") p.normal = tokens_.vec3_value();
+        else if (k.text == "offset") p.offset = tokens_.number();
+        else return false;
+        return true;
+      });
+      float len = glm::length(p.normal);
+      if (!(len > 0.f)) tokens_.fail(t, "plane normal must not be zero");
+      // n . p = d with n as written: normalise n and d together.
+      p.normal /= len;
+      p.offset /= len;
+      scene_.planes.push_back(p);
+      return shape_node(ShapeKind::plane, int(scene_.planes.size()) - 1, "plane");
+    }
+    if (t.text == "Triangle") {
+      Triangle tri;
+      parse_block(t, "vertex0, vertex1, vertex2", [&](const Token& k) {
+        if (k.text == "vertex0") tri.vertices[0] = tokens_.vec3_value();
+        else if (k.text == "vertex1") tri.vertices[1] = tokens_.vec3_value();
+        else if (k.text == "vertex2") tri.vertices[2] = tokens_.vec3_value();
+        else return false;
+        return true;
+      });
+      scene_.triangles.push_back(tri);
+      return shape_node(ShapeKind::triangle, int(scene_.triangles.size()) - 1, "triangle");
+    }
+    if (t.text == "TriangleMesh") {
+      int mesh = invalid;
+      parse_block(t, "obj_file", [&](const Token& k) {
+        if (k.text != "obj_file") return false;
+        Token f = tokens_.next_or_fail("an OBJ file name after obj_file");
+        mesh = load_mesh(f);
+        return true;
+      });
+      if (mesh == invalid) tokens_.fail(t, "TriangleMesh needs an obj_file");
+      return shape_node(ShapeKind::mesh, mesh, "mesh");
+    }
+    if (t.text == "Transform") return parse_transform(t);
+    tokens_.fail(t, "expected an object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform), MaterialIndex or '}'");
+  }
+
+  int parse_transform(const Token& opener) {
+    tokens_.expect("{", "Transform");
+    mat4 m(1.f);
+    int child = invalid;
+    for (;;) {
+      Token t = tokens_.next_or_fail("'}' to close Transform opened at " + tokens_.line_col(opener));
+      if (t.text == "}") break;
+      // Right-multiplied: the first listed acts last on the object.
+      if (t.text == "Scale") m = glm::scale(m, tokens_.vec3_value());
+      else if (t.text == "UniformScale") m = glm::scale(m, vec3(tokens_.number()));
+      else if (t.text == "Translate") m = glm::translate(m, tokens_.vec3_value());
+      else if (t.text == "XRotate") m = glm::rotate(m, radians(tokens_.number()), vec3(1, 0, 0));
+      else if (t.text == "YRotate") m = glm::rotate(m, radians(tokens_.number()), vec3(0, 1, 0));
+      else if (t.text == "ZRotate") m = glm::rotate(m, radians(tokens_.number()), vec3(0, 0, 1));
+      else if (t.text == "Rotate") {
+        tokens_.expect("{", "Rotate");
+        vec3 axis = tokens_.vec3_value();
+        float deg = tokens_.number();
+        tokens_.expect("}", "Rotate");
+        if (glm::length(axis) == 0.f) tokens_.fail(t, "Rotate axis must not be zero");
+        m = glm::rotate(m, radians(deg), glm::normalize(axis));
+      } else if (t.text == "Matrix4f") {
+        tokens_.expect("{", "Matrix4f");
+        mat4 a;
+        // Read column by column: numbers 13-15 hold the translation.
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) a[c][r] = tokens_.number();
+        tokens_.expect("}", "Matrix4f");
+        m = a * m;  // Matrix4f left-multiplies
+      } else {
+        if (child != invalid) tokens_.fail(t, "a Transform holds exactly one object; expected '}'");
+        child = parse_object(t);
+      }
+    }
+    if (child == invalid) tokens_.fail(opener, "Transform holds no object");
+    Node n;
+    n.kind = Node::Kind::transform;
+    n.name = "transform";
+    n.local = m;
+    n.children = {child};
+    return add_node(std::move(n));
+  }
+
+  int load_mesh(const Token& file) {
+    fs::path p = resolve(file, file.text, "mesh file");
+    std::string key = fs::weakly_canonical(p).string();
+    auto it = mesh_cache_.find(key);
+    if (it != mesh_cache_.end()) return it->second;
+    Mesh m;
+    try {
+      m = read_course_mesh(p.string(), dialect_);
+    } catch (const Error& e) {
+      tokens_.fail(file, std::string("cannot load mesh: ") + e.what());
+    }
+    m.name = file.text;
+    scene_.meshes.push_back(std::move(m));
+    int index = int(scene_.meshes.size()) - 1;
+    mesh_cache_[key] = index;
+    return index;
+  }
+
+  CourseTokenizer tokens_;
+  std::string path_;
+  CourseDialect dialect_;
+  Scene scene_;
+  std::vector<std::string> warnings_;
+  int current_material_ = invalid;  // MaterialIndex stays in force across groups
+  Token current_material_token_;
+  std::vector<std::pair<int, Token>> material_refs_;
+  std::map<std::string, int> mesh_cache_, texture_cache_;
+};
+
+}  // namespace
+
+CourseScene parse_course_scene(std::string_view text, const std::string& path, const CourseReadOptions& options) {
+  CourseDialect dialect = options.dialect ? *options.dialect
+                                          : (course_text_uses_2019_keywords(text) ? CourseDialect::v2019 : CourseDialect::v2012);
+  return CourseParser(text, path, dialect).parse();
+}
+
+CourseScene read_course_scene(const std::string& path, const CourseReadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open scene file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_course_scene(ss.str(), path, options);
+}
+
+}  // namespace rayform

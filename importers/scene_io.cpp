@@ -1,0 +1,37 @@
+#include "scene_io.h"
+
+#include "scene/error.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace rayform {
+
+SceneFormat scene_format_from_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".txt") return SceneFormat::course_txt;
+  if (ext == ".obj") return SceneFormat::obj;
+  if (ext == ".gltf" || ext == ".glb") return SceneFormat::gltf;
+  throw Error(path + ": unknown scene format '" + ext + "': expected .txt (course), .obj, .gltf or .glb");
+}
+
+LoadedScene load_scene(const std::string& path, const LoadOptions& options) {
+  LoadedScene out;
+  out.format = scene_format_from_path(path);
+  switch (out.format) {
+    case SceneFormat::course_txt: {
+      CourseScene cs = read_course_scene(path, CourseReadOptions{options.dialect});
+      out.scene = std::move(cs.scene);
+      out.dialect = cs.dialect;
+      out.warnings = std::move(cs.warnings);
+      return out;
+    }
+    case SceneFormat::obj:
+    case SceneFormat::gltf:
+      throw Error(path + ": reading this format is not supported yet");
+  }
+  return out;
+}
+
+}  // namespace rayform

@@ -1,0 +1,30 @@
+// One entry point over the format readers: picks the format by extension.
+#pragma once
+
+#include "course_txt/course_reader.h"
+#include "scene/scene.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+enum class SceneFormat { course_txt, obj, gltf };
+
+struct LoadOptions {
+  std::optional<CourseDialect> dialect;  // course scenes only
+};
+
+struct LoadedScene {
+  Scene scene;
+  SceneFormat format = SceneFormat::course_txt;
+  CourseDialect dialect = CourseDialect::v2012;  // course scenes: the dialect used
+  std::vector<std::string> warnings;
+};
+
+// Throws rayform::Error for an unknown extension or a bad file.
+SceneFormat scene_format_from_path(const std::string& path);
+LoadedScene load_scene(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace rayform

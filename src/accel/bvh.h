@@ -1,0 +1,106 @@
+// Bounding volume hierarchy over abstract primitives given by their bounds:
+// binned SAH build, nodes flattened depth-first (the left child follows its
+// parent), traversed near child first with a small explicit stack. The same
+// builder serves the triangles of a mesh and the instances of a scene.
+#pragma once
+
+#include "geometry/bounds.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace rayform {
+
+// 32 bytes. Leaf: count > 0, primitives [offset, offset + count) of
+// Bvh::primitives. Interior: count == 0, left child at index + 1, right child
+// at `offset`, `axis` the split axis (for near-child-first order).
+struct BvhNode {
+  vec3 lo;
+  uint32_t offset;
+  vec3 hi;
+  uint16_t count;
+  uint8_t axis;
+  uint8_t pad;
+};
+static_assert(sizeof(BvhNode) == 32);
+
+struct Bvh {
+  std::vector<BvhNode> nodes;
+  std::vector<uint32_t> primitives;  // primitive ids in leaf order
+  Bounds3 bounds() const { return nodes.empty() ? Bounds3{} : Bounds3{nodes[0].lo, nodes[0].hi}; }
+  size_t memory_bytes() const {
+    return nodes.capacity() * sizeof(BvhNode) + primitives.capacity() * sizeof(uint32_t);
+  }
+};
+
+// The builder never makes a tree deeper than this, so traversal stacks of
+// this size cannot overflow (each level pushes at most one extra entry).
+inline constexpr int bvh_max_depth = 120;
+inline constexpr int bvh_stack_size = bvh_max_depth + 2;
+
+struct BvhBuildOptions {
+  int max_leaf_size = 4;     // leaves never hold more than this many primitives
+  int bins = 16;             // SAH candidate planes per axis
+  float traversal_cost = 1.f;  // relative to one primitive test
+};
+
+// Builds a BVH; primitives with empty bounds are left out. Deterministic.
+Bvh build_bvh(std::span<const Bounds3> primitive_bounds, const BvhBuildOptions& options = {});
+
+// Depth-first traversal for the closest hit. `leaf(first, count, tmax)` tests
+// primitives [first, first+count) of bvh.primitives, may lower tmax, and
+// returns whether it did. Returns whether any leaf reported a hit.
+template <class LeafFn>
+inline bool traverse_closest(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn&& leaf) {
+  if (bvh.nodes.empty()) return false;
+  const RaySlabs slabs = make_ray_slabs(ray);
+  const BvhNode* nodes = bvh.nodes.data();
+  uint32_t stack[bvh_stack_size];
+  int top = 0;
+  stack[top++] = 0;
+  bool hit = false;
+  float t_enter;
+  while (top > 0) {
+    uint32_t index = stack[--top];
+    const BvhNode& n = nodes[index];
+    // Tested on pop, so that a closer hit found meanwhile prunes the node.
+    if (!slab_hit(n.lo, n.hi, slabs, ray.tmin, tmax, &t_enter)) continue;
+    if (n.count > 0) {
+      hit |= leaf(n.offset, n.count, tmax);
+    } else if (slabs.dir_is_neg[n.axis]) {  // the right child is nearer
+      stack[top++] = index + 1;
+      stack[top++] = n.offset;
+    } else {
+      stack[top++] = n.offset;
+      stack[top++] = index + 1;
+    }
+  }
+  return hit;
+}
+
+// Any-hit traversal: stops at the first leaf that reports a hit (shadow rays).
+template <class LeafFn>
+inline bool traverse_any(const Bvh& bvh, const Ray& ray, LeafFn&& leaf) {
+  if (bvh.nodes.empty()) return false;
+  const RaySlabs slabs = make_ray_slabs(ray);
+  const BvhNode* nodes = bvh.nodes.data();
+  uint32_t stack[bvh_stack_size];
+  int top = 0;
+  stack[top++] = 0;
+  float t_enter;
+  while (top > 0) {
+    const BvhNode& n = nodes[stack[--top]];
+    if (!slab_hit(n.lo, n.hi, slabs, ray.tmin, ray.tmax, &t_enter)) continue;
+    if (n.count > 0) {
+      if (leaf(n.offset, n.count)) return true;
+    } else {
+      uint32_t index = uint32_t(&n - nodes);
+      stack[top++] = n.offset;
+      stack[top++] = index + 1;
+    }
+  }
+  return false;
+}
+
+}  // namespace rayform

@@ -1,0 +1,101 @@
+// Watertight ray/triangle intersection (Woop, Benthin and Wald, JCGT 2013), in
+// the form pbrt-v4 documents: vertices are translated to the ray origin,
+// permuted so that the ray's largest direction component becomes z, sheared so
+// the ray points along +z, and the edge functions are evaluated in double when
+// they round to zero, so that a ray through a shared edge or vertex is never
+// lost between two triangles. The hit distance is accepted only when it is
+// larger than its own rounding-error bound.
+#pragma once
+
+#include "geometry/ray.h"
+#include "math/math.h"
+
+namespace rayform {
+
+// Barycentrics: the hit point is b0*p0 + b1*p1 + b2*p2.
+struct TriangleHit {
+  float t;
+  float b0, b1, b2;
+};
+
+// Per-ray constants of the watertight test (permutation and shear), computed
+// once per ray and reused for every triangle the ray visits.
+struct TriangleRay {
+  vec3 origin;
+  int kx, ky, kz;
+  float sx, sy, sz;
+};
+
+inline TriangleRay make_triangle_ray(const Ray& r) {
+  TriangleRay tr;
+  tr.origin = r.origin;
+  vec3 ad = glm::abs(r.direction);
+  tr.kz = max_dimension(ad);
+  tr.kx = tr.kz + 1 == 3 ? 0 : tr.kz + 1;
+  tr.ky = tr.kx + 1 == 3 ? 0 : tr.kx + 1;
+  vec3 d(r.direction[tr.kx], r.direction[tr.ky], r.direction[tr.kz]);
+  tr.sx = -d.x / d.z;
+  tr.sy = -d.y / d.z;
+  tr.sz = 1.f / d.z;
+  return tr;
+}
+
+// Returns true and fills *hit when the ray hits the triangle with tmin < t < tmax.
+inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
+                               TriangleHit* hit) {
+  vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
+  a = vec3(a[r.kx], a[r.ky], a[r.kz]);
+  b = vec3(b[r.kx], b[r.ky], b[r.kz]);
+  c = vec3(c[r.kx], c[r.ky], c[r.kz]);
+  a.x += r.sx * a.z; a.y += r.sy * a.z;
+  b.x += r.sx * b.z; b.y += r.sy * b.z;
+  c.x += r.sx * c.z; c.y += r.sy * c.z;
+
+  // Edge functions: e0 for the edge b-c (weight of p0), e1 for c-a, e2 for a-b.
+  float e0 = b.x * c.y - b.y * c.x;
+  float e1 = c.x * a.y - c.y * a.x;
+  float e2 = a.x * b.y - a.y * b.x;
+  if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
+    e0 = float(double(b.x) * double(c.y) - double(b.y) * double(c.x));
+    e1 = float(double(c.x) * double(a.y) - double(c.y) * double(a.x));
+    e2 = float(double(a.x) * double(b.y) - double(a.y) * double(b.x));
+  }
+  if ((e0 < 0.f || e1 < 0.f || e2 < 0.f) && (e0 > 0.f || e1 > 0.f || e2 > 0.f)) return false;
+  float det = e0 + e1 + e2;
+  if (det == 0.f) return false;  // degenerate or edge-on triangle
+
+  a.z *= r.sz; b.z *= r.sz; c.z *= r.sz;
+  float t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
+  // Range test on the scaled distance (avoids the division for rejected hits).
+  if (det < 0.f && (t_scaled >= tmin * det || t_scaled <= tmax * det)) return false;
+  if (det > 0.f && (t_scaled <= tmin * det || t_scaled >= tmax * det)) return false;
+
+  float inv_det = 1.f / det;
+  float t = t_scaled * inv_det;
+
+  // Conservative bound on the error of t (pbrt-v4, section 6.8.7): reject hits
+  // whose distance cannot be told apart from zero.
+  float max_zt = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
+  float delta_z = gamma_bound(3) * max_zt;
+  float max_xt = std::max({std::abs(a.x), std::abs(b.x), std::abs(c.x)});
+  float max_yt = std::max({std::abs(a.y), std::abs(b.y), std::abs(c.y)});
+  float delta_x = gamma_bound(5) * (max_xt + max_zt);
+  float delta_y = gamma_bound(5) * (max_yt + max_zt);
+  float delta_e = 2.f * (gamma_bound(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  float max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+  float delta_t =
+      3.f * (gamma_bound(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::abs(inv_det);
+  if (t <= delta_t) return false;
+
+  hit->t = t;
+  hit->b0 = e0 * inv_det;
+  hit->b1 = e1 * inv_det;
+  hit->b2 = e2 * inv_det;
+  return true;
+}
+
+inline bool intersect_triangle(const Ray& r, vec3 p0, vec3 p1, vec3 p2, TriangleHit* hit) {
+  return intersect_triangle(make_triangle_ray(r), p0, p1, p2, r.tmin, r.tmax, hit);
+}
+
+}  // namespace rayform

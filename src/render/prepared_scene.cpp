@@ -1,0 +1,132 @@
+#include "render/prepared_scene.h"
+
+#include <algorithm>
+
+namespace rayform {
+namespace {
+
+bool is_identity(const mat4& m) { return m == mat4(1.f); }
+
+Bounds3 object_bounds(const Scene& scene, ShapeKind kind, int shape, const std::vector<MeshAccel>& meshes) {
+  Bounds3 b;
+  switch (kind) {
+    case ShapeKind::sphere: {
+      const Sphere& s = scene.spheres[shape];
+      float r = std::abs(s.radius);
+      b.expand(s.center - vec3(r));
+      b.expand(s.center + vec3(r));
+      break;
+    }
+    case ShapeKind::triangle:
+      for (const vec3& v : scene.triangles[shape].vertices) b.expand(v);
+      break;
+    case ShapeKind::mesh: b = meshes[shape].bvh.bounds(); break;
+    case ShapeKind::plane: break;
+  }
+  return b;
+}
+
+int shape_count(const Scene& s, ShapeKind k) {
+  switch (k) {
+    case ShapeKind::sphere: return int(s.spheres.size());
+    case ShapeKind::plane: return int(s.planes.size());
+    case ShapeKind::triangle: return int(s.triangles.size());
+    case ShapeKind::mesh: return int(s.meshes.size());
+  }
+  return 0;
+}
+
+}  // namespace
+
+size_t PreparedScene::memory_bytes() const {
+  size_t bytes = instances.capacity() * sizeof(Instance) + top.memory_bytes();
+  for (const MeshAccel& m : meshes) bytes += m.memory_bytes();
+  for (const TextureImage& t : textures) bytes += t.image.pixels.capacity() * sizeof(float);
+  for (const TextureImage& t : cube_map) bytes += t.image.pixels.capacity() * sizeof(float);
+  return bytes;
+}
+
+PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
+  PreparedScene p;
+  p.scene = &scene;
+  p.materials = scene.materials;
+  p.materials.push_back(Material{});  // default material, for shapes with none
+  const int default_material = int(p.materials.size()) - 1;
+
+  // Flatten the hierarchy.
+  std::vector<uint8_t> mesh_used(scene.meshes.size(), 0);
+  for_each_shape_node(scene, [&](const Node& n, const mat4& to_world) {
+    if (n.shape < 0 || n.shape >= shape_count(scene, n.shape_kind))
+      throw Error("scene: node '" + n.name + "' references a missing shape");
+    Instance inst;
+    inst.kind = n.shape_kind;
+    inst.shape = n.shape;
+    inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
+    inst.has_transform = !is_identity(to_world);
+    inst.to_world = to_world;
+    inst.to_object = glm::inverse(to_world);
+    inst.normal_to_world = glm::transpose(mat3(inst.to_object));
+    if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
+    p.instances.push_back(inst);
+  });
+
+  // Build each used mesh once, however often it is instanced.
+  p.meshes.resize(scene.meshes.size());
+  for (size_t i = 0; i < scene.meshes.size(); ++i)
+    if (mesh_used[i]) p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh);
+
+  // Top level over bounded instances; planes stay outside.
+  std::vector<Bounds3> bounds(p.instances.size());
+  for (size_t i = 0; i < p.instances.size(); ++i) {
+    Instance& inst = p.instances[i];
+    if (inst.kind == ShapeKind::plane) {
+      p.plane_instances.push_back(uint32_t(i));
+      continue;  // empty bounds: left out of the BVH
+    }
+    Bounds3 ob = object_bounds(scene, inst.kind, inst.shape, p.meshes);
+    inst.world_bounds = inst.has_transform ? transform_bounds(inst.to_world, ob) : ob;
+    bounds[i] = inst.world_bounds;
+    p.bounds.expand(inst.world_bounds);
+  }
+  BvhBuildOptions top_options = options.bvh;
+  top_options.max_leaf_size = 1;
+  p.top = build_bvh(bounds, top_options);
+
+  // Features, and decode only the textures that hit materials use.
+  SceneFeatures& f = p.features;
+  std::vector<uint8_t> material_used(p.materials.size(), 0);
+  for (const Instance& inst : p.instances) {
+    material_used[inst.material] = 1;
+    if (inst.kind == ShapeKind::mesh) {
+      const Mesh& m = scene.meshes[inst.shape];
+      for (int fm : m.face_materials)
+        if (fm >= 0 && fm < int(scene.materials.size())) material_used[fm] = 1;
+      if (!m.colors.empty()) f.vertex_colors = true;
+    }
+    f.transforms |= inst.has_transform;
+    f.planes |= inst.kind == ShapeKind::plane;
+  }
+  p.textures.resize(scene.textures.size());
+  for (size_t i = 0; i < p.materials.size(); ++i) {
+    if (!material_used[i]) continue;
+    const Material& m = p.materials[i];
+    if (m.specular != vec3(0.f)) f.specular = true;
+    if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
+    if (m.diffuse_texture >= 0 && m.diffuse_texture < int(scene.textures.size())) {
+      f.textures = true;
+      TextureImage& t = p.textures[m.diffuse_texture];
+      if (t.image.empty()) t = decode_texture(scene.textures[m.diffuse_texture]);
+    }
+  }
+  for (const Light& l : scene.lights) {
+    if (l.kind != Light::Kind::directional) f.point_lights = true;
+    if (l.kind != Light::Kind::directional && l.falloff > 0.f) f.falloff = true;
+  }
+  if (scene.background.cube_map[0] != invalid) {
+    f.cube_map = true;
+    for (int face : scene.background.cube_map) p.cube_map.push_back(decode_texture(scene.textures.at(face)));
+  }
+  return p;
+}
+
+}  // namespace rayform

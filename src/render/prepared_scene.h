@@ -1,0 +1,64 @@
+// The render-ready form of a Scene: the node tree flattened into instances
+// (shape + object-to-world matrix + material), a BVH per used mesh and one over
+// the bounded instances, decoded textures (only those used), and the features
+// the scene needs so the render loop can skip the rest.
+#pragma once
+
+#include "accel/bvh.h"
+#include "accel/mesh_accel.h"
+#include "render/texture_sampler.h"
+#include "scene/node_walk.h"
+#include "scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace rayform {
+
+struct Instance {
+  ShapeKind kind = ShapeKind::mesh;
+  int shape = invalid;     // index into the Scene's array of this kind
+  int material = invalid;  // index into PreparedScene::materials
+  bool has_transform = false;  // false: object space is world space
+  mat4 to_world{1.f};
+  mat4 to_object{1.f};
+  mat3 normal_to_world{1.f};  // inverse transpose of to_world's linear part
+  Bounds3 world_bounds;
+};
+
+// What a scene uses; the render loop takes a path without the rest.
+struct SceneFeatures {
+  bool textures = false;       // some hit material samples a texture
+  bool specular = false;       // some material has a non-zero specular colour
+  bool point_lights = false;   // point or spot lights
+  bool transforms = false;     // some instance has a non-identity transform
+  bool planes = false;         // unbounded planes, tested outside the BVH
+  bool cube_map = false;       // background from a cube map
+  bool alpha_cutout = false;   // some material has an alpha cut-out
+  bool vertex_colors = false;
+  bool falloff = false;        // some point light attenuates with distance
+};
+
+struct PrepareOptions {
+  BvhBuildOptions bvh;
+};
+
+struct PreparedScene {
+  const Scene* scene = nullptr;
+  std::vector<Instance> instances;
+  std::vector<uint32_t> plane_instances;  // instances of planes (unbounded, outside `top`)
+  Bvh top;                                 // over the bounded instances
+  std::vector<MeshAccel> meshes;           // per Scene mesh; empty if unused
+  std::vector<TextureImage> textures;      // per Scene texture; empty image if unused
+  std::vector<Material> materials;         // the Scene's, then one default material
+  std::vector<TextureImage> cube_map;      // six faces, or empty
+  SceneFeatures features;
+  Bounds3 bounds;                          // of the bounded instances, world space
+
+  size_t memory_bytes() const;
+};
+
+// Throws rayform::Error when a used texture cannot be decoded.
+PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options = {});
+
+}  // namespace rayform

@@ -1,0 +1,41 @@
+// The render loop: the image is split into tiles rendered in parallel (oneTBB);
+// each pixel is traced independently, so the result does not depend on the
+// number of threads.
+#pragma once
+
+#include "image/image.h"
+#include "render/prepared_scene.h"
+
+#include <functional>
+
+namespace rayform {
+
+struct RenderOptions {
+  int width = 200, height = 200;  // pixels
+  int camera = 0;                  // index into Scene::cameras
+  int threads = 0;                 // 0: all hardware threads
+  bool shadows = false;            // shadow rays to each light
+  int bounces = 0;                 // mirror reflection depth
+  // Which per-pixel outputs to fill besides colour.
+  bool depth = false, normals = false, albedo = false;
+  bool generic = false;            // force the general path (no feature specialisation)
+  int tile_size = 16;
+  // Called with the fraction of tiles done (from worker threads, serialised).
+  std::function<void(float)> progress;
+};
+
+// Per-pixel outputs, rows from the top. Depth is the hit distance along the
+// camera ray (infinity on a miss); normals are unit world-space shading
+// normals (zero on a miss); albedo is the unlit surface colour K.
+struct RenderResult {
+  int width = 0, height = 0;
+  Image color;                 // 3 channels, linear, unclamped
+  std::vector<float> depth;
+  std::vector<vec3> normals;
+  Image albedo;                // 3 channels
+};
+
+// Throws rayform::Error for an invalid size or camera index.
+RenderResult render(const PreparedScene& scene, const RenderOptions& options);
+
+}  // namespace rayform

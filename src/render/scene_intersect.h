@@ -1,0 +1,112 @@
+// Closest-hit and any-hit queries over a PreparedScene (hit first), and the
+// surface data of a hit (shade after). Free functions over compact arrays: no
+// virtual dispatch and no allocation per ray.
+#pragma once
+
+#include "geometry/plane_intersect.h"
+#include "geometry/sphere_intersect.h"
+#include "render/prepared_scene.h"
+
+namespace rayform {
+
+// Small hit record: which instance and primitive, where along the ray, and the
+// barycentrics (b1, b2) of triangle hits.
+struct Hit {
+  float t = infinity;
+  uint32_t instance = 0;
+  uint32_t primitive = 0;
+  float b1 = 0.f, b2 = 0.f;
+};
+
+// The ray in an instance's object space: M^-1 applied without renormalising,
+// so t measures the same point in both spaces.
+inline Ray to_object_space(const Instance& inst, const Ray& r) {
+  if (!inst.has_transform) return r;
+  Ray o = r;
+  o.origin = transform_point(inst.to_object, r.origin);
+  o.direction = transform_vector(inst.to_object, r.direction);
+  return o;
+}
+
+inline bool intersect_instance(const PreparedScene& p, uint32_t index, const Ray& world_ray, float& tmax, Hit* hit) {
+  const Instance& inst = p.instances[index];
+  Ray r = to_object_space(inst, world_ray);
+  r.tmax = tmax;
+  const Scene& s = *p.scene;
+  switch (inst.kind) {
+    case ShapeKind::sphere: {
+      float t;
+      if (!intersect_sphere(r, s.spheres[inst.shape].center, s.spheres[inst.shape].radius, &t)) return false;
+      tmax = t;
+      *hit = {t, index, 0, 0.f, 0.f};
+      return true;
+    }
+    case ShapeKind::plane: {
+      float t;
+      if (!intersect_plane(r, s.planes[inst.shape].normal, s.planes[inst.shape].offset, &t)) return false;
+      tmax = t;
+      *hit = {t, index, 0, 0.f, 0.f};
+      return true;
+    }
+    case ShapeKind::triangle: {
+      const auto& v = s.triangles[inst.shape].vertices;
+      TriangleHit th;
+      if (!intersect_triangle(make_triangle_ray(r), v[0], v[1], v[2], r.tmin, r.tmax, &th)) return false;
+      tmax = th.t;
+      *hit = {th.t, index, 0, th.b1, th.b2};
+      return true;
+    }
+    case ShapeKind::mesh: {
+      MeshHit mh;
+      if (!intersect_mesh(p.meshes[inst.shape], r, tmax, &mh)) return false;
+      *hit = {tmax, index, mh.triangle, mh.b1, mh.b2};
+      return true;
+    }
+  }
+  return false;
+}
+
+// Closest hit with ray.tmin < t < ray.tmax.
+inline bool intersect_scene(const PreparedScene& p, const Ray& ray, Hit* hit) {
+  float tmax = ray.tmax;
+  bool found = traverse_closest(p.top, ray, tmax, [&](uint32_t first, uint32_t count, float& t_max) {
+    bool any = false;
+    for (uint32_t i = first; i < first + count; ++i) any |= intersect_instance(p, p.top.primitives[i], ray, t_max, hit);
+    return any;
+  });
+  for (uint32_t i : p.plane_instances) found |= intersect_instance(p, i, ray, tmax, hit);
+  return found;
+}
+
+// Whether anything lies on the ray with tmin < t < tmax (shadow rays).
+inline bool occluded(const PreparedScene& p, const Ray& ray) {
+  auto blocks = [&](uint32_t index) {
+    const Instance& inst = p.instances[index];
+    if (inst.kind == ShapeKind::mesh) return occluded_mesh(p.meshes[inst.shape], to_object_space(inst, ray));
+    float tmax = ray.tmax;
+    Hit h;
+    return intersect_instance(p, index, ray, tmax, &h);
+  };
+  for (uint32_t i : p.plane_instances)
+    if (blocks(i)) return true;
+  return traverse_any(p.top, ray, [&](uint32_t first, uint32_t count) {
+    for (uint32_t i = first; i < first + count; ++i)
+      if (blocks(p.top.primitives[i])) return true;
+    return false;
+  });
+}
+
+// Everything shading needs about a hit, in world space.
+struct SurfacePoint {
+  vec3 position{0.f};
+  vec3 normal{0.f, 0.f, 1.f};            // shading normal, unit length
+  vec3 geometric_normal{0.f, 0.f, 1.f};  // unit length
+  vec2 uv{0.f};
+  bool has_uv = false;
+  vec3 color{1.f};                       // vertex colour (1 when absent)
+  int material = invalid;
+};
+
+SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit);
+
+}  // namespace rayform

@@ -1,0 +1,167 @@
+// The one internal scene every importer fills and every writer and the
+// renderer read: plain data in arrays, integer handles, no virtual classes and
+// no rendering state (Yocto/GL style). The node hierarchy is kept as the file
+// wrote it so that writers can reproduce it; `prepare` flattens it for rendering.
+#pragma once
+
+#include "math/math.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+// Handle value meaning "none".
+inline constexpr int invalid = -1;
+
+// Perspective or orthographic pinhole camera, world space.
+struct Camera {
+  enum class Projection : uint8_t { perspective, orthographic };
+  // How the image plane's vertical axis is formed from `up`.
+  enum class UpVector : uint8_t {
+    orthonormal,  // v = u x w (course 2012 and all asset formats)
+    raw,          // v = up as written, not orthogonalised (course 2019)
+  };
+  enum class Aspect : uint8_t {
+    stretch,  // x and y both span [-1, 1] whatever the image shape (the course)
+    fit,      // fov_deg spans the vertical axis; x scaled by width/height (assets)
+  };
+  std::string name;
+  Projection projection = Projection::perspective;
+  UpVector up_vector = UpVector::orthonormal;
+  Aspect aspect = Aspect::stretch;
+  vec3 center{0.f, 0.f, 0.f};
+  vec3 direction{0.f, 0.f, -1.f};
+  vec3 up{0.f, 1.f, 0.f};
+  float fov_deg = 30.f;     // full opening angle (perspective), degrees
+  float ortho_height = 2.f; // full height of the view (orthographic), world units
+};
+
+struct Light {
+  enum class Kind : uint8_t { directional, point, spot };
+  std::string name;
+  Kind kind = Kind::directional;
+  vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (directional, spot)
+  vec3 position{0.f};               // point, spot
+  vec3 color{1.f};                  // radiance scale, linear
+  // Point/spot attenuation: colour / (falloff * distance^2); 0 means none (course 2012).
+  float falloff = 0.f;
+  float range = 0.f;  // glTF range, 0 = infinite
+  float spot_inner_deg = 0.f, spot_outer_deg = 45.f;
+};
+
+struct Texture {
+  enum class Wrap : uint8_t { repeat, clamp, mirror };
+  enum class Filter : uint8_t { linear, nearest };
+  // Where texel centres lie: the course samples with texel centres on whole
+  // numbers (x = u W, bilinear between floor(x) and floor(x)+1, clamped);
+  // the asset formats use centres at half-integers (x = u W - 0.5).
+  enum class Lookup : uint8_t { course, standard };
+  std::string name;
+  std::string path;  // file to decode, resolved to an openable path by the importer
+  // Already decoded pixels (e.g. images embedded in glTF), row 0 = top; when
+  // empty the texture is decoded from `path` at prepare time.
+  int width = 0, height = 0, channels = 0;
+  std::vector<uint8_t> pixels;
+  bool srgb = false;  // colour data stored sRGB-encoded (decoded to linear at prepare)
+  Wrap wrap_u = Wrap::repeat, wrap_v = Wrap::repeat;
+  Filter filter = Filter::linear;
+  Lookup lookup = Lookup::standard;
+};
+
+// Affine transform of texture coordinates (glTF KHR_texture_transform).
+struct UvTransform {
+  vec2 offset{0.f};
+  float rotation = 0.f;  // radians
+  vec2 scale{1.f};
+  bool is_identity() const { return offset == vec2(0.f) && rotation == 0.f && scale == vec2(1.f); }
+};
+
+// Phong material. Colours are linear RGB.
+struct Material {
+  std::string name;
+  vec3 diffuse{1.f};
+  vec3 specular{0.f};
+  float shininess = 0.f;  // Phong exponent
+  vec3 emission{0.f};
+  int diffuse_texture = invalid;  // replaces `diffuse` (times diffuse_factor) where the hit has uvs
+  bool texture_modulates = false; // true: K = diffuse * texel (assets); false: K = texel (course)
+  UvTransform uv_transform;
+  float alpha_cutoff = -1.f;      // < 0: opaque; else texel alpha below it is a hole
+  bool double_sided = true;
+  float refraction_index = 0.f;   // 0: opaque
+  int bump_texture = invalid;     // parsed and kept (course 2019 `bump`)
+};
+
+struct Sphere {
+  vec3 center{0.f};
+  float radius = 1.f;
+};
+
+// The plane normal . p = offset (normal as written, not normalised).
+struct Plane {
+  vec3 normal{0.f, 1.f, 0.f};
+  float offset = 0.f;
+};
+
+// A standalone triangle: shaded with its face normal.
+struct Triangle {
+  std::array<vec3, 3> vertices{};
+};
+
+// Triangle mesh with per-vertex attributes (each optional but positions).
+struct Mesh {
+  std::string name;
+  std::string source_path;     // file it was read from, if any
+  std::vector<vec3> positions;
+  std::vector<vec3> normals;   // empty: face normals
+  std::vector<vec2> uvs;       // empty: no texture coordinates
+  std::vector<vec3> colors;    // empty: no vertex colours
+  std::vector<uint32_t> indices;  // three per triangle
+  std::vector<int> face_materials;  // empty: the node's material for every face
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+enum class ShapeKind : uint8_t { sphere, plane, triangle, mesh };
+
+// Node of the scene graph. A group holds children; a transform holds children
+// under `local` (object to parent); a shape node references one primitive and
+// the material in force when it was declared.
+struct Node {
+  enum class Kind : uint8_t { group, transform, shape };
+  std::string name;
+  Kind kind = Kind::group;
+  mat4 local{1.f};
+  std::vector<int> children;
+  ShapeKind shape_kind = ShapeKind::mesh;
+  int shape = invalid;     // index into the array of shape_kind
+  int material = invalid;  // invalid: the default material
+};
+
+// Background colour or, when cube_map[0] is valid, a cube map (faces in the
+// order +x, -x, +y, -y, +z, -z: right, left, up, down, front(-z... see README)).
+struct Background {
+  vec3 color{0.5f};
+  vec3 ambient{0.f};
+  std::string cube_map_dir;                      // as written in the scene
+  std::array<int, 6> cube_map{invalid, invalid, invalid, invalid, invalid, invalid};
+};
+
+struct Scene {
+  std::string source_path;
+  std::vector<Camera> cameras;
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Sphere> spheres;
+  std::vector<Plane> planes;
+  std::vector<Triangle> triangles;
+  std::vector<Mesh> meshes;
+  std::vector<Node> nodes;
+  int root = invalid;
+  Background background;
+};
+
+}  // namespace rayform

@@ -1,0 +1,72 @@
+#include "scene/scene_stats.h"
+
+#include "scene/node_walk.h"
+
+#include <sstream>
+
+namespace rayform {
+
+SceneStats scene_stats(const Scene& scene) {
+  SceneStats st;
+  st.nodes = scene.nodes.size();
+  st.spheres = scene.spheres.size();
+  st.planes = scene.planes.size();
+  st.triangles = scene.triangles.size();
+  st.meshes = scene.meshes.size();
+  st.materials = scene.materials.size();
+  st.textures = scene.textures.size();
+  st.lights = scene.lights.size();
+  st.cameras = scene.cameras.size();
+  for (const Mesh& m : scene.meshes) st.unique_mesh_triangles += m.triangle_count();
+  for_each_shape_node(scene, [&](const Node& n, const mat4& m) {
+    st.instances++;
+    switch (n.shape_kind) {
+      case ShapeKind::sphere: {
+        if (n.shape < 0 || n.shape >= int(scene.spheres.size())) break;
+        const Sphere& s = scene.spheres[n.shape];
+        Bounds3 b;
+        b.expand(s.center - vec3(std::abs(s.radius)));
+        b.expand(s.center + vec3(std::abs(s.radius)));
+        st.bounds.expand(transform_bounds(m, b));
+        break;
+      }
+      case ShapeKind::triangle:
+        if (n.shape < 0 || n.shape >= int(scene.triangles.size())) break;
+        for (const vec3& v : scene.triangles[n.shape].vertices) st.bounds.expand(transform_point(m, v));
+        break;
+      case ShapeKind::mesh: {
+        if (n.shape < 0 || n.shape >= int(scene.meshes.size())) break;
+        const Mesh& mesh = scene.meshes[n.shape];
+        st.mesh_triangles += mesh.triangle_count();
+        Bounds3 b;
+        for (const vec3& v : mesh.positions) b.expand(v);
+        if (!b.empty()) st.bounds.expand(transform_bounds(m, b));
+        break;
+      }
+      case ShapeKind::plane: break;
+    }
+  });
+  return st;
+}
+
+std::string format_scene_stats(const SceneStats& s) {
+  std::ostringstream o;
+  o << "nodes:       " << s.nodes << "\n"
+    << "instances:   " << s.instances << "\n"
+    << "spheres:     " << s.spheres << "\n"
+    << "planes:      " << s.planes << "\n"
+    << "triangles:   " << s.triangles << " standalone, " << s.mesh_triangles << " in " << s.meshes
+    << " meshes (" << s.unique_mesh_triangles << " unique)\n"
+    << "materials:   " << s.materials << "\n"
+    << "textures:    " << s.textures << "\n"
+    << "lights:      " << s.lights << "\n"
+    << "cameras:     " << s.cameras << "\n";
+  if (s.bounds.empty())
+    o << "bounds:      empty\n";
+  else
+    o << "bounds:      (" << s.bounds.lo.x << ", " << s.bounds.lo.y << ", " << s.bounds.lo.z << ") - (" << s.bounds.hi.x
+      << ", " << s.bounds.hi.y << ", " << s.bounds.hi.z << ")" << (s.planes ? " (planes excluded)" : "") << "\n";
+  return o.str();
+}
+
+}  // namespace rayform

@@ -1,0 +1,26 @@
+// Counts and bounds of a scene, for `rayform info` and for framing default cameras.
+#pragma once
+
+#include "geometry/bounds.h"
+#include "scene/scene.h"
+
+#include <string>
+
+namespace rayform {
+
+struct SceneStats {
+  size_t nodes = 0, instances = 0;  // instances: shape nodes after flattening
+  size_t spheres = 0, planes = 0, triangles = 0, meshes = 0;
+  size_t mesh_triangles = 0;        // over all instances (a mesh instanced twice counts twice)
+  size_t unique_mesh_triangles = 0; // over the meshes themselves
+  size_t materials = 0, textures = 0, lights = 0, cameras = 0;
+  Bounds3 bounds;                   // world bounds of the bounded shapes (planes excluded)
+};
+
+// Throws rayform::Error when the node graph is invalid (cycle, bad index).
+SceneStats scene_stats(const Scene& scene);
+
+// Human-readable summary, one item a line.
+std::string format_scene_stats(const SceneStats& s);
+
+}  // namespace rayform
