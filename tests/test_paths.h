@@ -1,0 +1,44 @@
+// Where tests find data: our own files under the source tree, and the
+// third-party course data and tools in RAYFORM_SHARED (default ../shared).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+namespace rayform::test {
+
+inline std::filesystem::path source_dir() {
+  const char* e = std::getenv("RAYFORM_SOURCE_DIR");
+  return e && *e ? e : RAYFORM_SOURCE_DIR;
+}
+
+inline std::filesystem::path shared_dir() {
+  const char* e = std::getenv("RAYFORM_SHARED");
+  return e && *e ? e : RAYFORM_SHARED_DEFAULT;
+}
+
+inline bool shared_available() { return std::filesystem::is_directory(shared_dir() / "course"); }
+
+// A fresh empty folder for one test's outputs.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  auto p = std::filesystem::temp_directory_path() / ("rayform-test-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(p);
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+}  // namespace rayform::test
+
+// Skips the test (with the reason) when ../shared is absent; in CI it must be there.
+#define RAYFORM_REQUIRE_SHARED()                                                                  \
+  do {                                                                                            \
+    if (!::rayform::test::shared_available()) {                                                   \
+      if (std::getenv("CI")) FAIL() << "RAYFORM_SHARED not found at " << ::rayform::test::shared_dir(); \
+      GTEST_SKIP() << "third-party data not found at " << ::rayform::test::shared_dir()           \
+                   << " (set RAYFORM_SHARED)";                                                    \
+    }                                                                                             \
+  } while (0)
