@@ -130,4 +130,6 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   return res;
 }
 
+std::string render_path_name(const PreparedScene&, const RenderOptions&) { return "generic"; }
+
 }  // namespace rayform

@@ -5,8 +5,10 @@
 
 #include "image/image.h"
 #include "render/prepared_scene.h"
+#include "render/sampling.h"
 
 #include <functional>
+#include <string>
 
 namespace rayform {
 
@@ -15,7 +17,9 @@ struct RenderOptions {
   int camera = 0;                  // index into Scene::cameras
   int threads = 0;                 // 0: all hardware threads
   bool shadows = false;            // shadow rays to each light
-  int bounces = 0;                 // mirror reflection depth
+  int bounces = 0;                 // reflection/refraction depth
+  int spp = 1;                     // samples per pixel (1: the pixel centre only)
+  PixelFilter filter = PixelFilter::box;
   // Which per-pixel outputs to fill besides colour.
   bool depth = false, normals = false, albedo = false;
   bool generic = false;            // force the general path (no feature specialisation)
@@ -24,9 +28,11 @@ struct RenderOptions {
   std::function<void(float)> progress;
 };
 
-// Per-pixel outputs, rows from the top. Depth is the hit distance along the
-// camera ray (infinity on a miss); normals are unit world-space shading
-// normals (zero on a miss); albedo is the unlit surface colour K.
+// Per-pixel outputs, rows from the top. Colour is the filtered average of
+// the pixel's samples. Depth, normals and albedo come from the ray through the
+// pixel centre: depth is the hit distance along it (infinity on a miss),
+// normals are unit world-space shading normals (zero on a miss), albedo is the
+// unlit surface colour K.
 struct RenderResult {
   int width = 0, height = 0;
   Image color;                 // 3 channels, linear, unclamped
@@ -35,7 +41,11 @@ struct RenderResult {
   Image albedo;                // 3 channels
 };
 
-// Throws rayform::Error for an invalid size or camera index.
+// Throws rayform::Error for an invalid size, sample count or camera index.
 RenderResult render(const PreparedScene& scene, const RenderOptions& options);
+
+// Which specialised path render() takes for this scene and these options
+// ("generic" when forced or when no specialisation applies); for reports.
+std::string render_path_name(const PreparedScene& scene, const RenderOptions& options);
 
 }  // namespace rayform

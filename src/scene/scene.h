@@ -140,8 +140,9 @@ struct Node {
   int material = invalid;  // invalid: the default material
 };
 
-// Background colour or, when cube_map[0] is valid, a cube map (faces in the
-// order +x, -x, +y, -y, +z, -z: right, left, up, down, front(-z... see README)).
+// Background colour or, when cube_map[0] is valid, a cube map (texture handles
+// of the faces in the order right (+x), left (-x), up (+y), down (-y),
+// front (+z), back (-z): the course's file names).
 struct Background {
   vec3 color{0.5f};
   vec3 ambient{0.f};

@@ -1,0 +1,45 @@
+// Wavefront OBJ + MTL as a Scene, through tinyobjloader (a thin adapter).
+//
+// What the Scene gets:
+// - one root group node named after the file; under it one group node per
+//   `o`/`g` section that has faces, holding one shape node of one Mesh;
+// - polygons fan/ear-triangulated by tinyobjloader; negative (relative)
+//   indices resolved; vertices deduplicated per section over their
+//   (position, uv, normal) triple;
+// - every MTL material of every `mtllib` (several files per line, names with
+//   spaces, '\' separators all accepted), in file order; faces keep their own
+//   `usemtl` in Mesh::face_materials when a section uses several; faces
+//   without a (known) material use a grey material named "default";
+// - Kd Ks Ns Ke and map_Kd (with -s/-o into Material::uv_transform and
+//   -clamp into the wrap mode); map_Bump is kept as bump_texture. Colour
+//   textures are sRGB, modulate Kd (K = Kd * texel) and use the standard
+//   (half-texel) lookup with repeat wrapping;
+// - normals as written (normalised); where a corner has none they are
+//   generated: smooth, each face weighted by its corner angle, over all faces
+//   that share the position (ObjReadOptions::flat: faceted instead);
+// - vertex colours (`v x y z r g b`) when every vertex has them.
+// No cameras and no lights: see scene/scene_defaults.h.
+//
+// Missing .mtl files, textures and unknown materials are warnings, not
+// failures. Errors (rayform::Error, message "file:line: ..." where a line is
+// known): unreadable file, a face index that names no vertex, non-finite
+// positions, no faces at all.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+struct ObjReadOptions {
+  bool flat = false;  // normals missing from the file: faceted instead of smooth
+};
+
+// Reads an OBJ file (and the .mtl files it names). Warnings, if wanted, are
+// appended to `warnings`, each naming the file it is about.
+Scene read_obj_scene(const std::string& path, const ObjReadOptions& options = {},
+                     std::vector<std::string>* warnings = nullptr);
+
+}  // namespace rayform
