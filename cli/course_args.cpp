@@ -3,13 +3,15 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <set>
 
 namespace rayform::cli {
 namespace {
 
 const std::set<std::string> course_flags = {"-input", "-size", "-output", "-depth", "-normals", "-dialect",
-                                            "-bounces", "-shadows", "-threads", "-quiet", "-albedo"};
+                                            "-bounces", "-shadows", "-threads", "-quiet", "-albedo",
+                                            "-jitter", "-filter", "-spp"};
 
 struct Args {
   const std::vector<std::string>& v;
@@ -74,6 +76,12 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
       job.bounces = a.integer(f, "a number of bounces");
       if (job.bounces < 0) throw UsageError("-bounces expects a number >= 0");
     } else if (f == "-shadows") job.shadows = true;
+    else if (f == "-jitter") job.spp = std::max(job.spp, 16);
+    else if (f == "-filter") job.filter = PixelFilter::tent;
+    else if (f == "-spp") {
+      job.spp = a.integer(f, "a number of samples per pixel");
+      if (job.spp < 1) throw UsageError("-spp expects a number >= 1");
+    }
     else if (f == "-threads") {
       job.threads = a.integer(f, "a number of threads");
       if (job.threads < 0) throw UsageError("-threads expects a number >= 0");

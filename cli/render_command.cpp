@@ -39,9 +39,32 @@ DepthOutput parse_depth(const std::string& s) {
   return d;
 }
 
+// "X,Y,Z" -> vector.
+vec3 parse_vec3(const std::string& s, const char* option) {
+  vec3 v;
+  size_t pos = 0;
+  try {
+    for (int k = 0; k < 3; ++k) {
+      size_t used = 0;
+      v[k] = std::stof(s.substr(pos), &used);
+      pos += used;
+      if (k < 2) {
+        if (pos >= s.size() || s[pos] != ',') throw std::invalid_argument("comma");
+        ++pos;
+      }
+    }
+    if (pos != s.size() || !is_finite(v)) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
+  }
+  return v;
+}
+
 struct RenderArgs {
   RenderJob job;
-  std::string size = "200x200", depth, dialect;
+  std::string size = "200x200", depth, dialect, filter = "box", color = "auto";
+  std::string look_from, look_at, up, background;
+  float fov = 0.f;
 };
 
 }  // namespace
@@ -56,7 +79,7 @@ void add_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   RenderJob& job = a->job;
   CLI::App* render = app.add_subcommand("render", "Render a scene to an image");
-  render->add_option("scene", job.input, "Scene file (.txt)")->required();
+  render->add_option("scene", job.input, "Scene file (.txt, .obj, .gltf, .glb)")->required();
   render->add_option("-o,--output", job.output, "Colour image (png, bmp, tga, jpg, exr, ...)")->required();
   render->add_option("--size", a->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   render->add_option("--depth", a->depth, "Depth image MIN:MAX:FILE");
@@ -65,12 +88,32 @@ void add_render_command(CLI::App& app) {
   render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")->check(CLI::IsMember({"2012", "2019"}));
   render->add_option("--camera", job.camera, "Camera index")->check(CLI::NonNegativeNumber);
   render->add_option("--threads", job.threads, "Worker threads (0: all)")->check(CLI::NonNegativeNumber);
+  render->add_flag("--shadows", job.shadows, "Shadow rays to every light");
+  render->add_option("--bounces", job.bounces, "Reflection/refraction depth")->check(CLI::NonNegativeNumber);
+  render->add_option("--spp", job.spp, "Samples per pixel (anti-aliasing)")->check(CLI::PositiveNumber);
+  render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")->check(CLI::IsMember({"box", "tent"}))->capture_default_str();
+  render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
+      ->check(CLI::IsMember({"auto", "raw", "srgb"}))->capture_default_str();
+  render->add_option("--look-from", a->look_from, "Camera position X,Y,Z");
+  render->add_option("--look-at", a->look_at, "Point the camera looks at X,Y,Z");
+  render->add_option("--up", a->up, "Camera up vector X,Y,Z");
+  render->add_option("--fov", a->fov, "Camera opening angle in degrees");
+  render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--generic", job.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->callback([a] {
     parse_size(a->size, &a->job.width, &a->job.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
+    a->job.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
+    a->job.color = a->color == "raw" ? RenderJob::ColorEncoding::raw
+                   : a->color == "srgb" ? RenderJob::ColorEncoding::srgb
+                                        : RenderJob::ColorEncoding::automatic;
+    if (!a->look_from.empty()) a->job.look_from = parse_vec3(a->look_from, "--look-from");
+    if (!a->look_at.empty()) a->job.look_at = parse_vec3(a->look_at, "--look-at");
+    if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
+    if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
+    if (a->fov != 0.f) a->job.fov = a->fov;
     run_render_job(a->job);
   });
 }

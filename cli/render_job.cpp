@@ -3,14 +3,44 @@
 #include "progress.h"
 #include "render/aov_images.h"
 #include "render/prepared_scene.h"
+#include "image/color.h"
 #include "render/render.h"
 #include "scene/error.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
 namespace rayform::cli {
 namespace fs = std::filesystem;
+namespace {
+
+// Applies --look-from/--look-at/--up/--fov to the chosen camera.
+void apply_camera_overrides(const RenderJob& job, Scene& scene) {
+  if (!(job.look_from || job.look_at || job.up || job.fov)) return;
+  if (job.camera < 0 || job.camera >= int(scene.cameras.size()))
+    throw Error("the scene has no camera " + std::to_string(job.camera) + " to adjust");
+  Camera& c = scene.cameras[job.camera];
+  vec3 target = c.center + c.direction;  // keep looking at the same point when only moving
+  if (job.look_from) c.center = *job.look_from;
+  if (job.look_at) target = *job.look_at;
+  if (job.look_from || job.look_at) {
+    if (target == c.center) throw Error("--look-at must differ from --look-from");
+    c.direction = target - c.center;
+  }
+  if (job.up) c.up = *job.up;
+  if (glm::length(glm::cross(c.direction, c.up)) == 0.f) throw Error("--up must not be parallel to the view direction");
+  if (job.fov) {
+    if (!(*job.fov > 0.f && *job.fov < 180.f)) throw Error("--fov must lie strictly between 0 and 180 degrees");
+    c.fov_deg = *job.fov;
+  }
+}
+
+void encode_srgb(Image& img) {
+  for (float& v : img.pixels) v = linear_to_srgb(std::clamp(v, 0.f, 1.f));
+}
+
+}  // namespace
 
 void check_output_path(const std::string& path, const char* what) {
   if (path.empty()) throw Error(std::string(what) + ": no file name given");
@@ -33,8 +63,11 @@ void run_render_job(const RenderJob& job) {
   if (!job.normals.empty()) check_output_path(job.normals, "normals");
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
+  if (job.spp < 1) throw Error("samples per pixel must be at least 1");
   LoadedScene loaded = load_scene(job.input, LoadOptions{job.dialect});
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  apply_camera_overrides(job, loaded.scene);
+  if (job.background) loaded.scene.background.color = *job.background;
   PreparedScene prepared = prepare_scene(loaded.scene);
 
   RenderOptions ro;
@@ -45,6 +78,8 @@ void run_render_job(const RenderJob& job) {
   ro.shadows = job.shadows;
   ro.bounces = job.bounces;
   ro.generic = job.generic;
+  ro.spp = job.spp;
+  ro.filter = job.filter;
   ro.depth = job.depth.has_value();
   ro.normals = !job.normals.empty();
   ro.albedo = !job.albedo.empty();
@@ -55,6 +90,12 @@ void run_render_job(const RenderJob& job) {
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
+  bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
+              (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
+  if (srgb) {
+    encode_srgb(result.color);
+    if (!job.albedo.empty()) encode_srgb(result.albedo);
+  }
   write_image(job.output, result.color);
   if (job.depth)
     write_image(job.depth->file, depth_image(result, job.depth->min, job.depth->max,

@@ -2,6 +2,7 @@
 // Shared by the course-compatible flags and the `render` subcommand.
 #pragma once
 
+#include "render/sampling.h"
 #include "scene_io.h"
 
 #include <optional>
@@ -24,6 +25,13 @@ struct RenderJob {
   std::optional<CourseDialect> dialect;
   int bounces = 0;
   bool shadows = false;
+  int spp = 1;
+  PixelFilter filter = PixelFilter::box;
+  // Output transfer function: auto = raw for course scenes, sRGB for assets.
+  enum class ColorEncoding { automatic, raw, srgb } color = ColorEncoding::automatic;
+  // Camera and background overrides (any format).
+  std::optional<vec3> look_from, look_at, up, background;
+  std::optional<float> fov;
   int threads = 0;
   int camera = 0;
   bool generic = false;

@@ -1,0 +1,89 @@
+#include "image/oiio_plugin.h"
+
+#include "image/oiio_plugin_abi.h"
+#include "scene/error.h"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+namespace rayform {
+namespace fs = std::filesystem;
+namespace {
+
+struct Plugin {
+  rayform_oiio_can_write_fn can_write = nullptr;
+  rayform_oiio_read_fn read = nullptr;
+  rayform_oiio_free_fn free = nullptr;
+  rayform_oiio_write_fn write = nullptr;
+};
+
+const Plugin& plugin() {
+  static Plugin p;
+  static std::once_flag once;
+  static std::string failure;
+  std::call_once(once, [] {
+    std::vector<fs::path> candidates;
+    if (const char* e = std::getenv("RAYFORM_OIIO_PLUGIN"); e && *e) candidates.push_back(e);
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+      candidates.push_back(exe.parent_path() / "librayform_oiio.so");
+      candidates.push_back(exe.parent_path() / "../lib/rayform/librayform_oiio.so");
+    }
+#ifdef RAYFORM_PLUGIN_DIR
+    candidates.push_back(fs::path(RAYFORM_PLUGIN_DIR) / "librayform_oiio.so");
+#endif
+    std::string tried;
+    for (const fs::path& c : candidates) {
+      if (!fs::exists(c)) { tried.append(" ").append(c.string()); continue; }
+      void* h = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!h) { failure = dlerror(); continue; }
+      p.can_write = reinterpret_cast<rayform_oiio_can_write_fn>(dlsym(h, "rayform_oiio_can_write"));
+      p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read"));
+      p.free = reinterpret_cast<rayform_oiio_free_fn>(dlsym(h, "rayform_oiio_free"));
+      p.write = reinterpret_cast<rayform_oiio_write_fn>(dlsym(h, "rayform_oiio_write"));
+      if (p.can_write && p.read && p.free && p.write) return;
+      failure = c.string();
+      failure.append(" lacks the rayform_oiio_* functions");
+      p = {};
+    }
+    if (failure.empty()) failure = std::string("librayform_oiio.so not found (looked at").append(tried).append("; set RAYFORM_OIIO_PLUGIN)");
+  });
+  if (!p.write) throw Error("OpenImageIO plugin unavailable: " + failure);
+  return p;
+}
+
+}  // namespace
+
+bool oiio_can_write(const std::string& path) { return plugin().can_write(path.c_str()) != 0; }
+
+bool oiio_read(const std::string& path, Image* image, std::string* error) {
+  const Plugin& p = plugin();
+  int w = 0, h = 0, c = 0;
+  float* data = nullptr;
+  char buf[512] = {0};
+  if (!p.read(path.c_str(), &w, &h, &c, &data, buf, sizeof buf)) {
+    *error = buf;
+    return false;
+  }
+  *image = Image(w, h, c);
+  std::copy(data, data + size_t(w) * h * c, image->pixels.begin());
+  p.free(data);
+  return true;
+}
+
+bool oiio_write(const std::string& file_for_format, const std::string& path, const Image& image, std::string* error) {
+  char buf[512] = {0};
+  if (!plugin().write(file_for_format.c_str(), path.c_str(), image.width, image.height, image.channels,
+                      image.pixels.data(), buf, sizeof buf)) {
+    *error = buf;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rayform

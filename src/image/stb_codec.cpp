@@ -1,0 +1,68 @@
+#include "image/stb_codec.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace rayform {
+
+bool stb_reads(const std::string& ext) {
+  return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg" || ext == ".hdr" ||
+         ext == ".gif" || ext == ".pnm" || ext == ".ppm" || ext == ".pgm" || ext == ".psd";
+}
+
+bool stb_writes(const std::string& ext) {
+  return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg" || ext == ".hdr";
+}
+
+bool stb_read(const std::string& path, Image* image, std::string* error) {
+  int w = 0, h = 0, c = 0;
+  if (stbi_is_hdr(path.c_str())) {
+    float* data = stbi_loadf(path.c_str(), &w, &h, &c, 0);
+    if (!data) { *error = stbi_failure_reason(); return false; }
+    *image = Image(w, h, c);
+    std::copy(data, data + size_t(w) * h * c, image->pixels.begin());
+    stbi_image_free(data);
+    return true;
+  }
+  if (stbi_is_16_bit(path.c_str())) {
+    stbi_us* data = stbi_load_16(path.c_str(), &w, &h, &c, 0);
+    if (!data) { *error = stbi_failure_reason(); return false; }
+    *image = Image(w, h, c);
+    for (size_t i = 0; i < image->pixels.size(); ++i) image->pixels[i] = data[i] / 65535.f;
+    stbi_image_free(data);
+    return true;
+  }
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &c, 0);
+  if (!data) { *error = stbi_failure_reason(); return false; }
+  *image = Image(w, h, c);
+  for (size_t i = 0; i < image->pixels.size(); ++i) image->pixels[i] = data[i] / 255.f;
+  stbi_image_free(data);
+  return true;
+}
+
+bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
+  const int w = img.width, h = img.height, c = img.channels;
+  int ok = 0;
+  if (ext == ".hdr") {
+    ok = stbi_write_hdr(path.c_str(), w, h, c, img.pixels.data());
+  } else {
+    std::vector<unsigned char> q(img.pixels.size());
+    for (size_t i = 0; i < q.size(); ++i) {
+      float v = img.pixels[i];
+      v = std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f);
+      q[i] = (unsigned char)std::min(255.f, std::floor(v * 255.f));
+    }
+    if (ext == ".png") ok = stbi_write_png(path.c_str(), w, h, c, q.data(), w * c);
+    else if (ext == ".bmp") ok = stbi_write_bmp(path.c_str(), w, h, c, q.data());
+    else if (ext == ".tga") ok = stbi_write_tga(path.c_str(), w, h, c, q.data());
+    else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), w, h, c, q.data(), 95);
+  }
+  if (!ok) *error = "cannot write the file (folder missing or not writable?)";
+  return ok != 0;
+}
+
+}  // namespace rayform
