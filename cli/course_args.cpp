@@ -11,7 +11,7 @@ namespace {
 
 const std::set<std::string> course_flags = {"-input", "-size", "-output", "-depth", "-normals", "-dialect",
                                             "-bounces", "-shadows", "-threads", "-quiet", "-albedo",
-                                            "-jitter", "-filter", "-spp"};
+                                            "-jitter", "-filter", "-spp", "-stats"};
 
 struct Args {
   const std::vector<std::string>& v;
@@ -86,6 +86,7 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
       job.threads = a.integer(f, "a number of threads");
       if (job.threads < 0) throw UsageError("-threads expects a number >= 0");
     } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
+    else if (f == "-stats") job.stats = true;
     else throw UsageError("unknown option '" + f + "'");
   }
   if (!has_input) throw UsageError("missing -input SCENE");

@@ -101,6 +101,7 @@ void add_render_command(CLI::App& app) {
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--generic", job.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
+  render->add_flag("--stats", job.stats, "Print load/prepare/render times and accelerator memory on stderr");
   render->callback([a] {
     parse_size(a->size, &a->job.width, &a->job.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);

@@ -8,6 +8,7 @@
 #include "scene/error.h"
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
@@ -64,11 +65,17 @@ void run_render_job(const RenderJob& job) {
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
   if (job.spp < 1) throw Error("samples per pixel must be at least 1");
+  using clock = std::chrono::steady_clock;
+  auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  auto t_load = clock::now();
   LoadedScene loaded = load_scene(job.input, LoadOptions{job.dialect});
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   apply_camera_overrides(job, loaded.scene);
   if (job.background) loaded.scene.background.color = *job.background;
+  double load_s = seconds_since(t_load);
+  auto t_prepare = clock::now();
   PreparedScene prepared = prepare_scene(loaded.scene);
+  double prepare_s = seconds_since(t_prepare);
 
   RenderOptions ro;
   ro.width = job.width;
@@ -85,8 +92,14 @@ void run_render_job(const RenderJob& job) {
   ro.albedo = !job.albedo.empty();
   Progress progress("rendering", job.quiet);
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
+  auto t_render = clock::now();
   RenderResult result = render(prepared, ro);
+  double render_s = seconds_since(t_render);
   progress.finish();
+  if (job.stats)
+    std::cerr << "stats: load " << load_s << " s, prepare " << prepare_s << " s, render " << render_s << " s ("
+              << render_path_name(prepared, ro) << " path, " << job.width << "x" << job.height << ", " << job.spp
+              << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;

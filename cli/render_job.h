@@ -36,6 +36,7 @@ struct RenderJob {
   int camera = 0;
   bool generic = false;
   bool quiet = false;
+  bool stats = false;  // print timings and counts on stderr
 };
 
 // Runs the job; throws rayform::Error with a message for the user.
