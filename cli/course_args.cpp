@@ -41,7 +41,11 @@ struct Args {
 }  // namespace
 
 bool is_course_command_line(const std::vector<std::string>& args) {
-  return !args.empty() && course_flags.count(args[0]) > 0;
+  // Any single-dash word first (modern options are --long or -x) is the
+  // course style, so that a misspelt course flag is named as unknown.
+  if (args.empty()) return false;
+  const std::string& a = args[0];
+  return course_flags.count(a) > 0 || (a.size() > 2 && a[0] == '-' && a[1] != '-');
 }
 
 RenderJob parse_course_command_line(const std::vector<std::string>& v) {

@@ -99,6 +99,8 @@ void add_render_command(CLI::App& app) {
   render->add_option("--up", a->up, "Camera up vector X,Y,Z");
   render->add_option("--fov", a->fov, "Camera opening angle in degrees");
   render->add_option("--background", a->background, "Background colour R,G,B");
+  render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
+  render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   render->add_flag("--generic", job.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render times and accelerator memory on stderr");

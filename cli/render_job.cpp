@@ -6,6 +6,7 @@
 #include "image/color.h"
 #include "render/render.h"
 #include "scene/error.h"
+#include "scene/scene_defaults.h"
 
 #include <algorithm>
 #include <chrono>
@@ -68,8 +69,20 @@ void run_render_job(const RenderJob& job) {
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   auto t_load = clock::now();
-  LoadedScene loaded = load_scene(job.input, LoadOptions{job.dialect});
+  LoadOptions lo;
+  lo.dialect = job.dialect;
+  lo.flat_normals = job.flat_normals;
+  lo.gltf_scene = job.gltf_scene;
+  LoadedScene loaded = load_scene(job.input, lo);
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  // Asset files often carry neither camera nor light (a course scene always has
+  // a camera, and without lights its ambient light is white).
+  if (loaded.format != SceneFormat::course_txt) {
+    if (add_default_camera(loaded.scene))
+      std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
+    if (add_headlight(loaded.scene))
+      std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
+  }
   apply_camera_overrides(job, loaded.scene);
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
@@ -109,13 +122,23 @@ void run_render_job(const RenderJob& job) {
     encode_srgb(result.color);
     if (!job.albedo.empty()) encode_srgb(result.albedo);
   }
-  write_image(job.output, result.color);
+  // All outputs appear together or not at all.
+  std::vector<std::pair<std::string, Image>> outputs;
+  outputs.emplace_back(job.output, std::move(result.color));
   if (job.depth)
-    write_image(job.depth->file, depth_image(result, job.depth->min, job.depth->max,
-                                             course_2019 ? DepthStyle::near_black : DepthStyle::near_white));
+    outputs.emplace_back(job.depth->file, depth_image(result, job.depth->min, job.depth->max,
+                                                      course_2019 ? DepthStyle::near_black : DepthStyle::near_white));
   if (!job.normals.empty())
-    write_image(job.normals, normals_image(result, course_2012 ? NormalStyle::absolute : NormalStyle::offset));
-  if (!job.albedo.empty()) write_image(job.albedo, result.albedo);
+    outputs.emplace_back(job.normals, normals_image(result, course_2012 ? NormalStyle::absolute : NormalStyle::offset));
+  if (!job.albedo.empty()) outputs.emplace_back(job.albedo, std::move(result.albedo));
+  std::vector<std::string> temporaries;
+  try {
+    for (const auto& [path, image] : outputs) temporaries.push_back(write_image_temporary(path, image));
+  } catch (...) {
+    for (const std::string& t : temporaries) discard_temporary(t);
+    throw;
+  }
+  for (size_t i = 0; i < outputs.size(); ++i) commit_temporary(temporaries[i], outputs[i].first);
 }
 
 }  // namespace rayform::cli

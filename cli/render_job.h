@@ -37,6 +37,8 @@ struct RenderJob {
   bool generic = false;
   bool quiet = false;
   bool stats = false;  // print timings and counts on stderr
+  bool flat_normals = false;  // OBJ: missing normals faceted
+  int gltf_scene = -1;        // glTF: scene index (-1: default)
 };
 
 // Runs the job; throws rayform::Error with a message for the user.

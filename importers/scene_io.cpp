@@ -28,8 +28,14 @@ LoadedScene load_scene(const std::string& path, const LoadOptions& options) {
       return out;
     }
     case SceneFormat::obj:
-    case SceneFormat::gltf:
-      throw Error(path + ": reading this format is not supported yet");
+      out.scene = read_obj_scene(path, ObjReadOptions{options.flat_normals}, &out.warnings);
+      return out;
+    case SceneFormat::gltf: {
+      GltfReadOptions gltf;
+      gltf.scene = options.gltf_scene;
+      out.scene = read_gltf_scene(path, gltf, &out.warnings);
+      return out;
+    }
   }
   return out;
 }

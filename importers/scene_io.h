@@ -2,6 +2,8 @@
 #pragma once
 
 #include "course_txt/course_reader.h"
+#include "gltf/gltf_reader.h"
+#include "obj/obj_reader.h"
 #include "scene/scene.h"
 
 #include <optional>
@@ -13,7 +15,9 @@ namespace rayform {
 enum class SceneFormat { course_txt, obj, gltf };
 
 struct LoadOptions {
-  std::optional<CourseDialect> dialect;  // course scenes only
+  std::optional<CourseDialect> dialect;  // course scenes only (keep first: callers brace-initialise it)
+  bool flat_normals = false;  // OBJ: normals missing from the file are faceted, not smooth
+  int gltf_scene = -1;        // glTF: the scene to load; -1: the file's default scene
 };
 
 struct LoadedScene {

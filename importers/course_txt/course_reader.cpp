@@ -45,6 +45,9 @@ class CourseParser {
       warnings_.push_back(path_ + ": the scene has no Group: nothing to render but the background");
     }
     if (scene_.cameras.empty()) throw Error(path_ + ": the scene has no PerspectiveCamera");
+    // `numLights 0` makes the ambient light white, so each object shows its
+    // diffuse colour (a scene without a Lights block keeps its ambient).
+    if (declared_no_lights_) scene_.background.ambient = vec3(1.f);
     // Check every MaterialIndex against the final material count.
     for (const auto& [node, token] : material_refs_)
       if (scene_.nodes[node].material >= int(scene_.materials.size()))
@@ -133,6 +136,7 @@ class CourseParser {
       tokens_.fail(count_token, "numLights is " + std::to_string(n) + " but " + std::to_string(lights.size()) +
                                     " lights follow");
     scene_.lights = std::move(lights);
+    declared_no_lights_ = n == 0;
   }
 
   void parse_background() {
@@ -275,6 +279,10 @@ class CourseParser {
     return index;
   }
 
+  static bool is_object_keyword(const std::string& w) {
+    return w == "Group" || w == "Sphere" || w == "Plane" || w == "Triangle" || w == "TriangleMesh" || w == "Transform";
+  }
+
   int parse_object(const Token& t) {
     if (t.text == "Group") return parse_group(t);
     if (t.text == "Sphere") {
@@ -362,9 +370,12 @@ class CourseParser {
           for (int r = 0; r < 4; ++r) a[c][r] = tokens_.number();
         tokens_.expect("}", "Matrix4f");
         m = a * m;  // Matrix4f left-multiplies
-      } else {
+      } else if (is_object_keyword(t.text)) {
         if (child != invalid) tokens_.fail(t, "a Transform holds exactly one object; expected '}'");
         child = parse_object(t);
+      } else {
+        tokens_.fail(t, "expected a transform (Scale, UniformScale, Translate, XRotate, YRotate, ZRotate, Rotate, "
+                        "Matrix4f), one object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform) or '}' in Transform");
       }
     }
     if (child == invalid) tokens_.fail(opener, "Transform holds no object");
@@ -399,6 +410,7 @@ class CourseParser {
   CourseDialect dialect_;
   Scene scene_;
   std::vector<std::string> warnings_;
+  bool declared_no_lights_ = false;
   int current_material_ = invalid;  // MaterialIndex stays in force across groups
   Token current_material_token_;
   std::vector<std::pair<int, Token>> material_refs_;

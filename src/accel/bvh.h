@@ -1,7 +1,8 @@
 // Bounding volume hierarchy over abstract primitives given by their bounds:
 // binned SAH build, nodes flattened depth-first (the left child follows its
-// parent), traversed near child first with a small explicit stack. The same
-// builder serves the triangles of a mesh and the instances of a scene.
+// parent), traversed near child first with a small explicit stack. It serves
+// the instances of a scene (the top level); the triangles of a mesh have their
+// own 8-wide BVH (mesh_accel.h), built with the same options.
 #pragma once
 
 #include "geometry/bounds.h"
@@ -42,7 +43,7 @@ inline constexpr int bvh_stack_size = bvh_max_depth + 2;
 struct BvhBuildOptions {
   int max_leaf_size = 4;     // leaves never hold more than this many primitives
   int bins = 16;             // SAH candidate planes per axis
-  float traversal_cost = 1.f;  // relative to one primitive test
+  float traversal_cost = 1.f;  // relative to one primitive test (mesh BVH: one test of a 4-triangle packet)
 };
 
 // Builds a BVH; primitives with empty bounds are left out. Deterministic.

@@ -3,12 +3,14 @@
 // permuted so that the ray's largest direction component becomes z, sheared so
 // the ray points along +z, and the edge functions are evaluated in double when
 // they round to zero, so that a ray through a shared edge or vertex is never
-// lost between two triangles. The hit distance is accepted only when it is
-// larger than its own rounding-error bound.
+// lost between two triangles. A hit is accepted only when t lies in the open
+// (tmin, tmax) and is larger than its own rounding-error bound.
 #pragma once
 
 #include "geometry/ray.h"
 #include "math/math.h"
+
+#include <algorithm>
 
 namespace rayform {
 
@@ -64,6 +66,9 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   float det = e0 + e1 + e2;
   if (det == 0.f) return false;  // degenerate or edge-on triangle
 
+  // Largest |z| of the translated vertices before the scaling by sz, in scene
+  // units: the sheared x + sx z and y + sy z round relative to it (|sx|, |sy| <= 1).
+  const float max_z = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
   a.z *= r.sz; b.z *= r.sz; c.z *= r.sz;
   float t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
   // Range test on the scaled distance (avoids the division for rejected hits).
@@ -72,20 +77,27 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
 
   float inv_det = 1.f / det;
   float t = t_scaled * inv_det;
+  // The scaled test above can pass a t that the division rounds onto tmin or
+  // tmax (or beyond): check the interval again on t itself, open at both ends.
+  if (!(t > tmin && t < tmax)) return false;
 
   // Conservative bound on the error of t (pbrt-v4, section 6.8.7): reject hits
-  // whose distance cannot be told apart from zero.
+  // whose distance cannot be told apart from zero. This also rejects the
+  // surface a ray starts on when its origin was not moved off it.
   float max_zt = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
   float delta_z = gamma_bound(3) * max_zt;
   float max_xt = std::max({std::abs(a.x), std::abs(b.x), std::abs(c.x)});
   float max_yt = std::max({std::abs(a.y), std::abs(b.y), std::abs(c.y)});
-  float delta_x = gamma_bound(5) * (max_xt + max_zt);
-  float delta_y = gamma_bound(5) * (max_yt + max_zt);
+  // The sheared x + sx z and y + sy z round relative to the unscaled max_z.
+  // (pbrt-v4 adds the scaled max_zt here, which is in units of t: too small a
+  // bound when |d| > 1, too large, rejecting true hits, when |d| < 1.)
+  float delta_x = gamma_bound(5) * (max_xt + max_z);
+  float delta_y = gamma_bound(5) * (max_yt + max_z);
   float delta_e = 2.f * (gamma_bound(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
   float max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
   float delta_t =
       3.f * (gamma_bound(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::abs(inv_det);
-  if (t <= delta_t) return false;
+  if (!(t > delta_t)) return false;
 
   hit->t = t;
   hit->b0 = e0 * inv_det;

@@ -22,12 +22,32 @@ struct Image {
 // Throws rayform::Error naming the file on failure.
 Image read_image(const std::string& path);
 
+// 8-bit pixels as stored in the file (row 0 = top, interleaved channels).
+struct Image8 {
+  int width = 0, height = 0, channels = 0;
+  std::vector<unsigned char> pixels;
+};
+
+// Reads an 8-bit file (bmp, png, tga, jpg, ...) without widening it to float;
+// returns false when the file is not one stb reads at 8 bits (hdr, 16-bit
+// png, exr, ...), in which case read_image is the way. Throws rayform::Error
+// when the file is of such a type but cannot be decoded.
+bool read_image8(const std::string& path, Image8* image);
+
 // Writes by extension (bmp, png, tga, jpg, exr, hdr, tif, ...). Integer
 // formats store floor(clamp(v, 0, 1) * 255) per channel, as the course
 // reference quantises; float formats store the values. The image is written to
 // a temporary file beside `path` and renamed over it, so a failure never leaves
 // a partial file. Throws rayform::Error on failure.
 void write_image(const std::string& path, const Image& image);
+
+// The two halves of write_image, for several outputs that must appear
+// together or not at all: write each to its temporary file first (throws,
+// leaving nothing behind), then rename them all. discard_temporary removes a
+// temporary that will not be committed.
+std::string write_image_temporary(const std::string& path, const Image& image);
+void commit_temporary(const std::string& temporary, const std::string& path);
+void discard_temporary(const std::string& temporary);
 
 // True when OpenImageIO can write files with this path's extension.
 bool is_writable_image_path(const std::string& path);

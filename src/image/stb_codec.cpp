@@ -44,6 +44,17 @@ bool stb_read(const std::string& path, Image* image, std::string* error) {
   return true;
 }
 
+bool stb_read8(const std::string& path, Image8* image, std::string* error) {
+  if (stbi_is_hdr(path.c_str()) || stbi_is_16_bit(path.c_str())) return false;
+  int w = 0, h = 0, c = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &c, 0);
+  if (!data) { *error = stbi_failure_reason(); return false; }
+  image->width = w; image->height = h; image->channels = c;
+  image->pixels.assign(data, data + size_t(w) * h * c);
+  stbi_image_free(data);
+  return true;
+}
+
 bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
   const int w = img.width, h = img.height, c = img.channels;
   int ok = 0;

@@ -19,6 +19,9 @@ bool stb_writes(const std::string& ext);
 // Returns false and sets *error on failure.
 bool stb_read(const std::string& path, Image* image, std::string* error);
 
+// 8-bit decode; false (with *error empty) when the file is hdr or 16-bit.
+bool stb_read8(const std::string& path, Image8* image, std::string* error);
+
 // `path` is written as is (the caller picks the temporary name); the format
 // follows `ext`. 8-bit formats store floor(clamp(v, 0, 1) * 255).
 bool stb_write(const std::string& path, const std::string& ext, const Image& image, std::string* error);

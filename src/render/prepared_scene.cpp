@@ -1,5 +1,7 @@
 #include "render/prepared_scene.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace rayform {
@@ -41,8 +43,8 @@ int shape_count(const Scene& s, ShapeKind k) {
 size_t PreparedScene::memory_bytes() const {
   size_t bytes = instances.capacity() * sizeof(Instance) + top.memory_bytes();
   for (const MeshAccel& m : meshes) bytes += m.memory_bytes();
-  for (const TextureImage& t : textures) bytes += t.image.pixels.capacity() * sizeof(float);
-  for (const TextureImage& t : cube_map) bytes += t.image.pixels.capacity() * sizeof(float);
+  for (const TextureImage& t : textures) bytes += t.memory_bytes();
+  for (const TextureImage& t : cube_map) bytes += t.memory_bytes();
   return bytes;
 }
 
@@ -107,15 +109,17 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     f.planes |= inst.kind == ShapeKind::plane;
   }
   p.textures.resize(scene.textures.size());
+  std::vector<int> to_decode;  // scene texture handles, each once
+  std::vector<uint8_t> queued(scene.textures.size(), 0);
   for (size_t i = 0; i < p.materials.size(); ++i) {
     if (!material_used[i]) continue;
     const Material& m = p.materials[i];
     if (m.specular != vec3(0.f)) f.specular = true;
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
-    if (m.diffuse_texture >= 0 && m.diffuse_texture < int(scene.textures.size())) {
+    int t = m.diffuse_texture;
+    if (t >= 0 && t < int(scene.textures.size())) {
       f.textures = true;
-      TextureImage& t = p.textures[m.diffuse_texture];
-      if (t.image.empty()) t = decode_texture(scene.textures[m.diffuse_texture]);
+      if (!queued[t]) { queued[t] = 1; to_decode.push_back(t); }
     }
   }
   for (const Light& l : scene.lights) {
@@ -124,8 +128,18 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   }
   if (scene.background.cube_map[0] != invalid) {
     f.cube_map = true;
-    for (int face : scene.background.cube_map) p.cube_map.push_back(decode_texture(scene.textures.at(face)));
+    for (int face : scene.background.cube_map)
+      if (face < 0 || face >= int(scene.textures.size())) throw Error("scene: cube map face texture missing");
   }
+  // Decode the used textures and cube-map faces in parallel (PNG/JPEG decoding
+  // dominates preparation of textured scenes).
+  std::vector<TextureImage> faces(f.cube_map ? 6 : 0);
+  size_t jobs = to_decode.size() + faces.size();
+  tbb::parallel_for(size_t(0), jobs, [&](size_t j) {
+    if (j < to_decode.size()) p.textures[to_decode[j]] = decode_texture(scene.textures[to_decode[j]]);
+    else faces[j - to_decode.size()] = decode_texture(scene.textures[scene.background.cube_map[j - to_decode.size()]]);
+  });
+  p.cube_map = std::move(faces);
   return p;
 }
 

@@ -1,6 +1,8 @@
 #include "render/render.h"
 
+#include "geometry/ray_offset.h"
 #include "render/camera_rays.h"
+#include "render/cube_map.h"
 #include "render/shade_phong.h"
 #include "scene/error.h"
 
@@ -15,83 +17,134 @@
 namespace rayform {
 namespace {
 
-struct PixelSample {
+// Compile-time switches of a render path. The generic path has all of them
+// on; a specialised path turns off what the prepared scene does not use, so
+// its per-ray work skips those tests. Every switch only removes work whose
+// contribution is exactly zero for such scenes, so both paths give the same
+// image (checked by tests).
+template <bool Textures, bool Specular, bool Cutout>
+struct Tracer {
+  const PreparedScene& p;
+  const RenderOptions& o;
+  const Scene& s;
+
+  vec3 miss(const Ray& ray) const {
+    return p.features.cube_map ? sample_cube_map(p.cube_map, ray.direction) : s.background.color;
+  }
+
+  vec4 albedo(const Material& m, const SurfacePoint& sp) const {
+    if constexpr (Textures) return surface_albedo(p, m, sp);
+    else return vec4(m.diffuse * sp.color, 1.f);
+  }
+
+  // Closest hit that is not a cut-out hole (alpha below the material's cutoff).
+  bool closest(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
+    for (;;) {
+      if (!intersect_scene(p, ray, hit)) return false;
+      *sp = surface_point(p, ray, *hit);
+      const Material& m = p.materials[sp->material];
+      *k = albedo(m, *sp);
+      if constexpr (Cutout) {
+        if (m.alpha_cutoff >= 0.f && k->a < m.alpha_cutoff) {
+          ray.tmin = next_float_up(hit->t);
+          continue;
+        }
+      }
+      return true;
+    }
+  }
+
+  // Whether something blocks the way from the hit point to the light.
+  bool blocked(const SurfacePoint& sp, const Light& l, const LightSample& ls) const {
+    Ray shadow = l.kind == Light::Kind::directional
+                     ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
+                     : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);
+    return occluded(p, shadow);
+  }
+
+  vec3 radiance(const Ray& ray, int depth) const {
+    Hit hit;
+    SurfacePoint sp;
+    vec4 k(0.f);
+    if (!closest(ray, &hit, &sp, &k)) return miss(ray);
+    return shade(ray, sp, vec3(k), depth);
+  }
+
+  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth) const {
+    const Material& m = p.materials[sp.material];
+    vec3 d = glm::normalize(ray.direction);
+    vec3 c = s.background.ambient * k + m.emission;
+    for (const Light& l : s.lights) {
+      LightSample ls = sample_light(l, sp.position);
+      if (o.shadows && blocked(sp, l, ls)) continue;
+      if constexpr (Specular) c += phong_light(m, k, sp.normal, d, ls);
+      else c += std::max(0.f, glm::dot(ls.to_light, sp.normal)) * ls.color * k;
+    }
+    if constexpr (Specular) {
+      if (depth < o.bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth);
+    }
+    return c;
+  }
+
+  // Mirror reflection, or for refractive materials the Fresnel-weighted
+  // (Schlick) sum of reflection and refraction (Snell; total internal
+  // reflection reflects all). The exterior medium has index 1.
+  vec3 secondary(const SurfacePoint& sp, const Material& m, vec3 d, int depth) const {
+    vec3 n = sp.normal;
+    vec3 reflected = d - 2.f * glm::dot(d, n) * n;
+    auto trace_dir = [&](vec3 w) {
+      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1);
+    };
+    if (!(m.refraction_index > 0.f)) return trace_dir(reflected);
+    bool entering = glm::dot(d, sp.geometric_normal) < 0.f;
+    float eta = entering ? 1.f / m.refraction_index : m.refraction_index;  // n_incident / n_transmitted
+    vec3 ns = entering ? n : -n;
+    float cos_i = std::clamp(-glm::dot(d, ns), 0.f, 1.f);
+    float sin2_t = eta * eta * std::max(0.f, 1.f - cos_i * cos_i);
+    if (sin2_t >= 1.f) return trace_dir(reflected);  // total internal reflection
+    float cos_t = std::sqrt(1.f - sin2_t);
+    vec3 refracted = eta * d + (eta * cos_i - cos_t) * ns;
+    float r0 = (1.f - m.refraction_index) / (1.f + m.refraction_index);
+    r0 *= r0;
+    float cos_outside = entering ? cos_i : cos_t;
+    float fresnel = r0 + (1.f - r0) * std::pow(1.f - cos_outside, 5.f);
+    return fresnel * trace_dir(reflected) + (1.f - fresnel) * trace_dir(refracted);
+  }
+};
+
+struct PixelOut {
   vec3 color{0.f};
   float depth = infinity;
   vec3 normal{0.f};
   vec3 albedo{0.f};
 };
 
-struct Tracer {
-  const PreparedScene& p;
-  const RenderOptions& o;
-  const Scene& s;
-
-  vec3 background(const Ray&) const { return s.background.color; }
-
-  // Closest opaque hit: cut-out holes (alpha below the material's cutoff) are skipped.
-  bool closest_opaque(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
-    for (;;) {
-      if (!intersect_scene(p, ray, hit)) return false;
-      *sp = surface_point(p, ray, *hit);
-      const Material& m = p.materials[sp->material];
-      *k = surface_albedo(p, m, *sp);
-      if (!p.features.alpha_cutout || m.alpha_cutoff < 0.f || k->a >= m.alpha_cutoff) return true;
-      ray.tmin = next_float_up(hit->t);
-    }
-  }
-
-  PixelSample trace_camera(const Ray& ray) const {
-    PixelSample px;
-    Hit hit;
-    SurfacePoint sp;
-    vec4 k(0.f);
-    if (!closest_opaque(ray, &hit, &sp, &k)) {
-      px.color = background(ray);
-      return px;
-    }
-    px.depth = hit.t;
-    px.normal = sp.normal;
-    px.albedo = vec3(k);
-    px.color = shade(ray, sp, vec3(k));
-    return px;
-  }
-
-  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k) const {
-    const Material& m = p.materials[sp.material];
-    vec3 d = glm::normalize(ray.direction);
-    vec3 c = s.background.ambient * k + m.emission;
-    for (const Light& l : s.lights) c += phong_light(m, k, sp.normal, d, sample_light(l, sp.position));
-    return c;
-  }
-};
-
-}  // namespace
-
-RenderResult render(const PreparedScene& p, const RenderOptions& o) {
+template <bool Textures, bool Specular, bool Cutout>
+void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res) {
   const Scene& s = *p.scene;
-  if (o.width <= 0 || o.height <= 0)
-    throw Error("render: image size must be positive, got " + std::to_string(o.width) + "x" + std::to_string(o.height));
-  if (o.camera < 0 || o.camera >= int(s.cameras.size()))
-    throw Error("render: the scene has no camera " + std::to_string(o.camera) + " (it has " +
-                std::to_string(s.cameras.size()) + ")");
-  if (o.shadows || o.bounces > 0)
-    throw Error("render: shadows and reflections (-shadows, -bounces) are not implemented yet");
   const int W = o.width, H = o.height;
-  RenderResult res;
-  res.width = W;
-  res.height = H;
-  res.color = Image(W, H, 3);
-  if (o.depth) res.depth.assign(size_t(W) * H, infinity);
-  if (o.normals) res.normals.assign(size_t(W) * H, vec3(0.f));
-  if (o.albedo) res.albedo = Image(W, H, 3);
-
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], W, H);
-  const Tracer tracer{p, o, s};
+  const Tracer<Textures, Specular, Cutout> tracer{p, o, s};
+  const bool aovs = o.depth || o.normals || o.albedo;
   const int ts = std::max(1, o.tile_size);
   const int tiles_x = (W + ts - 1) / ts, tiles_y = (H + ts - 1) / ts, tiles = tiles_x * tiles_y;
   std::atomic<int> done{0};
   std::mutex progress_mutex;
+
+  // The first hit of a camera ray gives the per-pixel outputs.
+  auto trace_primary = [&](const Ray& ray, PixelOut& px) {
+    Hit hit;
+    SurfacePoint sp;
+    vec4 k(0.f);
+    if (!tracer.closest(ray, &hit, &sp, &k)) {
+      px.color = tracer.miss(ray);
+      return;
+    }
+    px.depth = hit.t;
+    px.normal = sp.normal;
+    px.albedo = vec3(k);
+    px.color = tracer.shade(ray, sp, vec3(k), 0);
+  };
 
   auto render_tile = [&](int tile) {
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
@@ -99,13 +152,27 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         // Row y counts from the top; the camera's j counts from the bottom.
-        Ray ray = camera_ray(frame, float(x), float(H - 1 - y));
-        PixelSample px = tracer.trace_camera(ray);
-        size_t i = size_t(y) * W + x;
+        const float i = float(x), j = float(H - 1 - y);
+        const uint32_t pixel = uint32_t(y) * uint32_t(W) + uint32_t(x);
+        PixelOut px;
+        if (o.spp <= 1) {
+          trace_primary(camera_ray(frame, i, j), px);
+        } else {
+          if (aovs) trace_primary(camera_ray(frame, i, j), px);
+          vec3 sum(0.f);
+          float weight = 0.f;
+          for (int n = 0; n < o.spp; ++n) {
+            PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter);
+            if (so.weight <= 0.f) continue;
+            sum += so.weight * tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0);
+            weight += so.weight;
+          }
+          px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
+        }
         float* c = res.color.at(x, y);
         c[0] = px.color.r; c[1] = px.color.g; c[2] = px.color.b;
-        if (o.depth) res.depth[i] = px.depth;
-        if (o.normals) res.normals[i] = px.normal;
+        if (o.depth) res.depth[pixel] = px.depth;
+        if (o.normals) res.normals[pixel] = px.normal;
         if (o.albedo) {
           float* a = res.albedo.at(x, y);
           a[0] = px.albedo.r; a[1] = px.albedo.g; a[2] = px.albedo.b;
@@ -119,7 +186,8 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   };
 
   std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  if (o.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
   if (o.threads == 1) {
     for (int t = 0; t < tiles; ++t) render_tile(t);
   } else {
@@ -127,9 +195,62 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
       for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
     });
   }
-  return res;
 }
 
-std::string render_path_name(const PreparedScene&, const RenderOptions&) { return "generic"; }
+struct PathChoice {
+  bool textures, specular, cutout;
+};
+
+PathChoice choose_path(const PreparedScene& p, const RenderOptions& o) {
+  if (o.generic) return {true, true, true};
+  return {p.features.textures, p.features.specular, p.features.alpha_cutout};
+}
+
+}  // namespace
+
+std::string render_path_name(const PreparedScene& p, const RenderOptions& o) {
+  if (o.generic) return "generic";
+  PathChoice c = choose_path(p, o);
+  if (c.textures && c.specular && c.cutout) return "generic";
+  std::string name = "specialised (without";
+  if (!c.textures) name += " textures";
+  if (!c.specular) name += " specular";
+  if (!c.cutout) name += " cut-outs";
+  return name + ")";
+}
+
+RenderResult render(const PreparedScene& p, const RenderOptions& o) {
+  const Scene& s = *p.scene;
+  if (o.width <= 0 || o.height <= 0)
+    throw Error("render: image size must be positive, got " + std::to_string(o.width) + "x" + std::to_string(o.height));
+  if (o.spp < 1) throw Error("render: samples per pixel must be at least 1, got " + std::to_string(o.spp));
+  if (o.bounces < 0) throw Error("render: bounces must not be negative");
+  if (o.camera < 0 || o.camera >= int(s.cameras.size()))
+    throw Error("render: the scene has no camera " + std::to_string(o.camera) + " (it has " +
+                std::to_string(s.cameras.size()) + ")");
+  const int W = o.width, H = o.height;
+  RenderResult res;
+  res.width = W;
+  res.height = H;
+  res.color = Image(W, H, 3);
+  if (o.depth) res.depth.assign(size_t(W) * H, infinity);
+  if (o.normals) res.normals.assign(size_t(W) * H, vec3(0.f));
+  if (o.albedo) res.albedo = Image(W, H, 3);
+
+  PathChoice c = choose_path(p, o);
+  // Dispatch to one of the eight compiled paths.
+  int key = (c.textures ? 4 : 0) | (c.specular ? 2 : 0) | (c.cutout ? 1 : 0);
+  switch (key) {
+    case 0: render_tiles<false, false, false>(p, o, res); break;
+    case 1: render_tiles<false, false, true>(p, o, res); break;
+    case 2: render_tiles<false, true, false>(p, o, res); break;
+    case 3: render_tiles<false, true, true>(p, o, res); break;
+    case 4: render_tiles<true, false, false>(p, o, res); break;
+    case 5: render_tiles<true, false, true>(p, o, res); break;
+    case 6: render_tiles<true, true, false>(p, o, res); break;
+    default: render_tiles<true, true, true>(p, o, res); break;
+  }
+  return res;
+}
 
 }  // namespace rayform

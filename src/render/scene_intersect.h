@@ -4,6 +4,7 @@
 #pragma once
 
 #include "geometry/plane_intersect.h"
+#include "geometry/ray_offset.h"
 #include "geometry/sphere_intersect.h"
 #include "render/prepared_scene.h"
 
@@ -98,7 +99,16 @@ inline bool occluded(const PreparedScene& p, const Ray& ray) {
 
 // Everything shading needs about a hit, in world space.
 struct SurfacePoint {
+  // The hit point, recomputed on the surface (barycentric point of the
+  // triangle, or reprojected onto the sphere / plane) and transformed to world
+  // space, and a conservative per-component bound on its absolute error: the
+  // exact surface passes through [position - position_error, position +
+  // position_error]. Secondary rays start at spawn_ray(position,
+  // position_error, geometric_normal, w) (geometry/ray_offset.h). For
+  // transformed instances the bound also covers the rounding of mapping a
+  // spawned origin back to object space (object_roundtrip_error).
   vec3 position{0.f};
+  vec3 position_error{0.f};
   vec3 normal{0.f, 0.f, 1.f};            // shading normal, unit length
   vec3 geometric_normal{0.f, 0.f, 1.f};  // unit length
   vec2 uv{0.f};

@@ -1,0 +1,89 @@
+// Whole renders through the public pipeline (prepare_scene + render): the
+// course scene scene06_bunny_1k at 200x200 and the 1M-triangle bumpy torus at
+// 1920x1080, with every hardware thread (threads:0) and with one.
+// Wall-clock time per render (prepare excluded, reported as prepare_ms).
+// Counters: ours = ms per render, Mrays_per_s = camera rays per second.
+#include "bench_meshes.h"
+#include "bench_scene.h"
+
+#include "render/prepared_scene.h"
+#include "render/render.h"
+#include "scene_io.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+using namespace rayform;
+using namespace rayform::bench;
+
+namespace {
+
+struct RenderCase {
+  std::string name;
+  int width, height;
+};
+
+// The scene of a case, loaded once; nullopt when its data is missing.
+const Scene* case_scene(const std::string& name) {
+  static std::map<std::string, std::optional<Scene>> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second ? &*it->second : nullptr;
+  std::optional<Scene> s;
+  if (name == "torus1M") {
+    s = make_mesh_scene(make_bumpy_torus(1'000'000, 1));
+  } else {
+    std::string path = shared_dir() + "/course/2012/" + name + ".txt";
+    if (std::filesystem::exists(path)) s = load_scene(path).scene;
+  }
+  auto& slot = cache[name] = std::move(s);
+  return slot ? &*slot : nullptr;
+}
+
+void bm_render(benchmark::State& state, RenderCase c, int threads) {
+  const Scene* scene = case_scene(c.name);
+  if (!scene) {
+    std::string msg = "skipped: " + shared_dir() + "/course/2012/" + c.name + ".txt not found (set RAYFORM_SHARED)";
+    state.SkipWithError(msg.c_str());
+    return;
+  }
+  double t0 = wall_seconds();
+  PreparedScene p = prepare_scene(*scene);
+  double prepare_s = wall_seconds() - t0;
+  RenderOptions o;
+  o.width = c.width;
+  o.height = c.height;
+  o.threads = threads;
+  double total = 0.;
+  for (auto _ : state) {
+    double s = wall_seconds();
+    RenderResult r = render(p, o);
+    double e = wall_seconds();
+    benchmark::DoNotOptimize(r.color.pixels.data());
+    total += e - s;
+    state.SetIterationTime(e - s);
+  }
+  double it = double(state.iterations());
+  state.counters["ours"] = 1e3 * total / it;
+  state.counters["Mrays_per_s"] = double(c.width) * c.height * it / total * 1e-6;
+  state.counters["prepare_ms"] = 1e3 * prepare_s;
+  state.SetLabel("ms");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (const RenderCase& c : {RenderCase{"scene06_bunny_1k", 200, 200}, RenderCase{"torus1M", 1920, 1080}})
+    for (int threads : {0, 1}) {
+      std::string name = "render/" + c.name + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                         "/threads:" + std::to_string(threads);
+      benchmark::RegisterBenchmark(name.c_str(), bm_render, c, threads)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,660 @@
+#include "obj/obj_reader.h"
+
+#include "scene/error.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace rayform {
+namespace fs = std::filesystem;
+namespace {
+
+// Grey of the material given to faces without a (known) material: light
+// enough to read, dark enough that a head-on light does not clip it.
+constexpr float default_grey = 0.8f;
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open OBJ file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error(path + ": cannot read OBJ file");
+  return ss.str();
+}
+
+std::string trim(std::string s) {
+  size_t b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  size_t e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+bool ends_with_ci(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i]) return false;
+  return true;
+}
+
+// Names written on Windows ('\' separators, ".\x.jpg") as a portable path.
+fs::path portable_path(std::string name) {
+  std::replace(name.begin(), name.end(), '\\', '/');
+  return fs::path(name).lexically_normal();
+}
+
+// A file named inside another file: relative to that file's folder (or
+// absolute) as written; failing that, its bare name in that folder (files
+// are often moved next to the model while the names keep an old layout).
+struct Resolved {
+  fs::path path;
+  bool found = false;
+  bool by_name_only = false;
+};
+
+Resolved resolve_beside(const fs::path& dir, const std::string& name) {
+  Resolved r;
+  fs::path p = portable_path(name);
+  if (p.empty()) return r;
+  std::error_code ec;
+  fs::path as_written = p.is_absolute() ? p : dir / p;
+  if (fs::is_regular_file(as_written, ec)) {
+    r.path = as_written;
+    r.found = true;
+    return r;
+  }
+  fs::path by_name = dir / p.filename();
+  if (!p.filename().empty() && fs::is_regular_file(by_name, ec)) {
+    r.path = by_name;
+    r.found = true;
+    r.by_name_only = true;
+  }
+  return r;
+}
+
+// The files an `mtllib` line names. The line may name several files, and a
+// name may contain spaces ("mtllib box mtllib.mtl"): the whole rest of the
+// line is tried first, then names split at whitespace and re-joined up to
+// each ".mtl".
+std::vector<std::string> split_mtllib(const std::string& rest, const fs::path& dir) {
+  if (resolve_beside(dir, rest).found) return {rest};
+  std::vector<std::string> out;
+  std::istringstream ss(rest);
+  std::string token, pending;
+  while (ss >> token) {
+    pending = pending.empty() ? token : pending + " " + token;
+    if (ends_with_ci(pending, ".mtl")) {
+      out.push_back(pending);
+      pending.clear();
+    }
+  }
+  if (!pending.empty()) out.push_back(pending);
+  return out;
+}
+
+struct MtlLibrary {
+  std::vector<tinyobj::material_t> materials;
+  std::map<std::string, int> names;
+  std::vector<fs::path> dirs;   // per material: folder of its .mtl (textures resolve there)
+  std::vector<bool> has_kd;     // per material: the .mtl gave Kd
+};
+
+// Scans MTL text for the materials that set Kd (tinyobjloader does not say),
+// following its reading of `newmtl`: the name is the rest of the line.
+std::set<std::string> materials_with_kd(const std::string& text) {
+  std::set<std::string> out;
+  std::istringstream in(text);
+  std::string line, current;
+  while (std::getline(in, line)) {
+    size_t e = line.find_last_not_of(" \t\r");
+    line = e == std::string::npos ? std::string() : line.substr(0, e + 1);
+    size_t b = line.find_first_not_of(" \t");
+    if (b == std::string::npos) continue;
+    std::string t = line.substr(b);
+    if (t.size() > 7 && t.compare(0, 6, "newmtl") == 0 && (t[6] == ' ' || t[6] == '\t')) current = t.substr(7);
+    else if (t.size() > 2 && t[0] == 'K' && t[1] == 'd' && (t[2] == ' ' || t[2] == '\t')) out.insert(current);
+  }
+  return out;
+}
+
+// Hands tinyobjloader the materials read beforehand from every mtllib (its
+// own reader would take only the first file of a line and no spaces or '\').
+class PreloadedMaterials : public tinyobj::MaterialReader {
+ public:
+  explicit PreloadedMaterials(const MtlLibrary& lib) : lib_(lib) {}
+  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* names, std::string*, std::string*) override {
+    if (!given_) {
+      *materials = lib_.materials;
+      *names = lib_.names;
+      given_ = true;
+    }
+    return true;
+  }
+
+ private:
+  const MtlLibrary& lib_;
+  bool given_ = false;
+};
+
+// Where an OBJ index goes wrong, for messages: the first face corner (line
+// and 1-based position in the face) whose index of `kind` (0 vertex, 1 uv,
+// 2 normal) names no element. Counts elements as they are declared, as OBJ
+// resolves relative indices.
+struct BadIndex {
+  size_t line = 0;
+  long index = 0;
+  size_t count = 0;
+};
+
+bool find_bad_index(const std::string& text, int kind, BadIndex* bad) {
+  std::istringstream in(text);
+  std::string line;
+  size_t counts[3] = {0, 0, 0};
+  size_t line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    size_t b = line.find_first_not_of(" \t");
+    if (b == std::string::npos) continue;
+    const char* t = line.c_str() + b;
+    if (t[0] == 'v' && (t[1] == ' ' || t[1] == '\t')) counts[0]++;
+    else if (t[0] == 'v' && t[1] == 't' && (t[2] == ' ' || t[2] == '\t')) counts[1]++;
+    else if (t[0] == 'v' && t[1] == 'n' && (t[2] == ' ' || t[2] == '\t')) counts[2]++;
+    else if (t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
+      std::istringstream fs_(std::string(t + 2));
+      std::string corner;
+      while (fs_ >> corner) {
+        // corner: v, v/t, v//n, v/t/n
+        std::string parts[3];
+        size_t s1 = corner.find('/');
+        parts[0] = corner.substr(0, s1);
+        if (s1 != std::string::npos) {
+          size_t s2 = corner.find('/', s1 + 1);
+          parts[1] = corner.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
+          if (s2 != std::string::npos) parts[2] = corner.substr(s2 + 1);
+        }
+        if (parts[kind].empty()) continue;
+        long i = std::strtol(parts[kind].c_str(), nullptr, 10);
+        long n = long(counts[kind]);
+        bool ok = (i > 0 && i <= n) || (i < 0 && n + i >= 0);
+        if (!ok) {
+          *bad = BadIndex{line_no, i, counts[kind]};
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+struct VertexKey {
+  int v, t, n;
+  bool operator==(const VertexKey& o) const { return v == o.v && t == o.t && n == o.n; }
+};
+struct VertexKeyHash {
+  size_t operator()(const VertexKey& k) const {
+    uint64_t h = uint64_t(uint32_t(k.v)) * 0x9E3779B97F4A7C15ull;
+    h ^= (uint64_t(uint32_t(k.t)) + 0x7F4A7C15ull + (h << 6) + (h >> 2));
+    h ^= (uint64_t(uint32_t(k.n)) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2));
+    return size_t(h);
+  }
+};
+
+class ObjSceneBuilder {
+ public:
+  ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
+      : path_(path), options_(options), warnings_(warnings), dir_(fs::path(path).parent_path()) {}
+
+  Scene build() {
+    text_ = read_text_file(path_);
+    load_material_libraries();
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn_text, err;
+    std::istringstream in(text_);
+    PreloadedMaterials reader(lib_);
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err, &in, &reader, /*triangulate*/ true,
+                               /*default_vcols_fallback*/ false);
+    if (!ok) fail_from_tinyobj(err);
+    handle_tinyobj_warnings(warn_text);
+
+    const size_t nv = attrib.vertices.size() / 3;
+    const size_t nt = attrib.texcoords.size() / 2;
+    const size_t nn = attrib.normals.size() / 3;
+    for (size_t i = 0; i < nv; ++i) {
+      vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+      if (!is_finite(p)) throw Error(path_ + ": vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+    }
+
+    // Check every corner; uv and normal indices that name nothing drop that
+    // attribute for the whole file (with a warning), as other converters do.
+    bool uvs_ok = true, normals_ok = true;
+    for (const tinyobj::shape_t& s : shapes)
+      for (const tinyobj::index_t& ix : s.mesh.indices) {
+        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= nv) fail_bad_index(0, nv);
+        if (ix.texcoord_index < -1 || (ix.texcoord_index >= 0 && size_t(ix.texcoord_index) >= nt)) uvs_ok = false;
+        if (ix.normal_index < -1 || (ix.normal_index >= 0 && size_t(ix.normal_index) >= nn)) normals_ok = false;
+      }
+    if (!uvs_ok) warn_bad_index(1, nt, "texture coordinates");
+    if (!normals_ok) warn_bad_index(2, nn, "normals");
+    // Written normals of zero (or non-finite) length count as missing.
+    normal_usable_.assign(nn, 1);
+    size_t unusable = 0;
+    for (size_t i = 0; i < nn; ++i) {
+      float len = glm::length(vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]));
+      if (!(len > 0.f) || !std::isfinite(len)) {
+        normal_usable_[i] = 0;
+        ++unusable;
+      }
+    }
+    if (unusable)
+      warn(path_ + ": " + std::to_string(unusable) + " written normal(s) of zero length; generated normals are used there");
+
+    has_colors_ = attrib.colors.size() == attrib.vertices.size() && nv > 0;
+    if (has_colors_)
+      has_colors_ = std::any_of(attrib.colors.begin(), attrib.colors.end(), [](float c) { return c != 1.f; });
+
+    convert_materials();
+
+    Node root;
+    root.kind = Node::Kind::group;
+    root.name = fs::path(path_).stem().string();
+    std::vector<int> children;
+    size_t triangles = 0;
+    for (const tinyobj::shape_t& s : shapes) {
+      if (s.mesh.indices.empty()) {
+        if (!s.lines.indices.empty() || !s.points.indices.empty())
+          warn(path_ + ": '" + s.name + "' holds only lines or points, which are not rendered");
+        continue;
+      }
+      int mesh = build_mesh(s, attrib, uvs_ok, normals_ok);
+      if (mesh == invalid) continue;
+      triangles += scene_.meshes[mesh].triangle_count();
+      Node shape;
+      shape.kind = Node::Kind::shape;
+      shape.name = scene_.meshes[mesh].name;
+      shape.shape_kind = ShapeKind::mesh;
+      shape.shape = mesh;
+      shape.material = mesh_node_material_;
+      Node group;
+      group.kind = Node::Kind::group;
+      group.name = scene_.meshes[mesh].name;
+      group.children = {add_node(std::move(shape))};
+      children.push_back(add_node(std::move(group)));
+    }
+    if (triangles == 0) throw Error(path_ + ": OBJ file has no faces");
+    root.children = std::move(children);
+    scene_.root = add_node(std::move(root));
+    scene_.source_path = path_;
+    return std::move(scene_);
+  }
+
+ private:
+  void warn(std::string w) {
+    if (warnings_ && seen_warnings_.insert(w).second) warnings_->push_back(std::move(w));
+  }
+
+  int add_node(Node n) {
+    scene_.nodes.push_back(std::move(n));
+    return int(scene_.nodes.size()) - 1;
+  }
+
+  // ---- materials ---------------------------------------------------------
+
+  void load_material_libraries() {
+    std::istringstream in(text_);
+    std::string line;
+    size_t line_no = 0;
+    std::set<std::string> loaded;
+    while (std::getline(in, line)) {
+      ++line_no;
+      size_t b = line.find_first_not_of(" \t");
+      if (b == std::string::npos || line.compare(b, 6, "mtllib") != 0) continue;
+      if (b + 6 < line.size() && line[b + 6] != ' ' && line[b + 6] != '\t') continue;
+      std::string rest = trim(line.substr(b + 6));
+      std::string where = path_ + ":" + std::to_string(line_no);
+      if (rest.empty()) {
+        warn(where + ": mtllib names no file");
+        continue;
+      }
+      for (const std::string& name : split_mtllib(rest, dir_)) {
+        Resolved r = resolve_beside(dir_, name);
+        if (!r.found) {
+          warn(where + ": cannot find material library '" + name + "'; its materials are replaced by the default material");
+          continue;
+        }
+        if (r.by_name_only)
+          warn(where + ": material library '" + name + "' not found as written; using " + r.path.string());
+        std::error_code ec;
+        std::string key = fs::weakly_canonical(r.path, ec).string();
+        if (!loaded.insert(key).second) continue;
+        load_mtl(r.path);
+      }
+    }
+  }
+
+  void load_mtl(const fs::path& file) {
+    std::ifstream f(file, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    if (!f) {
+      warn(file.string() + ": cannot read material library");
+      return;
+    }
+    std::string text = ss.str();
+    std::set<std::string> kd = materials_with_kd(text);
+    std::istringstream in(text);
+    std::string w, e;
+    size_t first = lib_.materials.size();
+    tinyobj::LoadMtl(&lib_.names, &lib_.materials, &in, &w, &e);
+    for (size_t i = first; i < lib_.materials.size(); ++i) {
+      lib_.dirs.push_back(file.parent_path());
+      lib_.has_kd.push_back(kd.count(lib_.materials[i].name) > 0);
+    }
+    std::istringstream wl(w + e);
+    std::string l;
+    while (std::getline(wl, l))
+      if (!trim(l).empty()) warn(file.string() + ": " + trim(l));
+  }
+
+  // A texture of a material: resolved beside its .mtl; missing = warning.
+  int texture(const std::string& name, const fs::path& mtl_dir, const std::string& material, const char* slot,
+              bool srgb, bool clamp) {
+    if (name.empty()) return invalid;
+    Resolved r = resolve_beside(mtl_dir, name);
+    if (!r.found) {
+      warn(path_ + ": material '" + material + "': cannot find " + slot + " texture '" + name + "' (looked in " +
+           mtl_dir.string() + "); the material has no " + slot + " texture");
+      return invalid;
+    }
+    if (r.by_name_only)
+      warn(path_ + ": material '" + material + "': " + slot + " texture '" + name + "' not found as written; using " +
+           r.path.string());
+    std::string key = r.path.lexically_normal().string() + (srgb ? "|srgb" : "|raw") + (clamp ? "|clamp" : "|repeat");
+    auto it = texture_cache_.find(key);
+    if (it != texture_cache_.end()) return it->second;
+    Texture t;
+    t.name = name;
+    t.path = r.path.lexically_normal().string();
+    t.srgb = srgb;
+    t.lookup = Texture::Lookup::standard;
+    t.wrap_u = t.wrap_v = clamp ? Texture::Wrap::clamp : Texture::Wrap::repeat;
+    t.filter = Texture::Filter::linear;
+    scene_.textures.push_back(std::move(t));
+    int index = int(scene_.textures.size()) - 1;
+    texture_cache_[key] = index;
+    return index;
+  }
+
+  void convert_materials() {
+    for (size_t i = 0; i < lib_.materials.size(); ++i) {
+      const tinyobj::material_t& tm = lib_.materials[i];
+      const fs::path& dir = lib_.dirs[i];
+      Material m;
+      m.name = tm.name;
+      m.texture_modulates = true;
+      m.double_sided = true;
+      bool srgb = tm.diffuse_texopt.colorspace != "linear";
+      m.diffuse_texture = texture(tm.diffuse_texname, dir, tm.name, "map_Kd", srgb, tm.diffuse_texopt.clamp);
+      // Kd absent: with a map_Kd the texel is the colour (Kd = 1, as
+      // exporters that leave Kd out mean); without one, the default grey.
+      // (tinyobjloader would give 0.6 or black.)
+      if (lib_.has_kd[i]) m.diffuse = vec3(tm.diffuse[0], tm.diffuse[1], tm.diffuse[2]);
+      else m.diffuse = vec3(m.diffuse_texture != invalid ? 1.f : default_grey);
+      if (m.diffuse_texture != invalid) {
+        // map_Kd -s/-o: uv' = uv * s + o, the shader's transform with no rotation.
+        m.uv_transform.scale = vec2(tm.diffuse_texopt.scale[0], tm.diffuse_texopt.scale[1]);
+        m.uv_transform.offset = vec2(tm.diffuse_texopt.origin_offset[0], tm.diffuse_texopt.origin_offset[1]);
+      }
+      m.specular = vec3(tm.specular[0], tm.specular[1], tm.specular[2]);
+      m.shininess = tm.shininess;
+      // Ns 0 would make (L.R)^0 = 1: a constant "highlight" over the whole lit
+      // side. Exporters write Ns 0 for "no highlight" (Blender: roughness 1).
+      if (!(m.shininess > 0.f)) {
+        m.shininess = 0.f;
+        m.specular = vec3(0.f);
+      }
+      m.emission = vec3(tm.emission[0], tm.emission[1], tm.emission[2]);
+      m.bump_texture = texture(tm.bump_texname, dir, tm.name, "map_Bump", false, tm.bump_texopt.clamp);
+      if (tm.dissolve < 1.f)
+        warn(path_ + ": material '" + tm.name + "': transparency (d " + std::to_string(tm.dissolve) +
+             ") is not rendered; the material is opaque");
+      // Ka has no place in the course Phong model (ambient = scene ambient x K).
+      std::vector<std::string> unused;
+      if (!tm.ambient_texname.empty()) unused.push_back("map_Ka");
+      if (!tm.specular_texname.empty()) unused.push_back("map_Ks");
+      if (!tm.specular_highlight_texname.empty()) unused.push_back("map_Ns");
+      if (!tm.emissive_texname.empty()) unused.push_back("map_Ke");
+      if (!tm.alpha_texname.empty()) unused.push_back("map_d");
+      if (!tm.displacement_texname.empty()) unused.push_back("disp");
+      if (!tm.reflection_texname.empty()) unused.push_back("refl");
+      if (!unused.empty()) {
+        std::string list;
+        for (const std::string& u : unused) list += (list.empty() ? "" : ", ") + u;
+        warn(path_ + ": material '" + tm.name + "': " + list + " not used by the Phong shader; ignored");
+      }
+      scene_.materials.push_back(std::move(m));
+    }
+  }
+
+  int default_material() {
+    if (default_material_ == invalid) {
+      Material m;
+      m.name = "default";
+      m.diffuse = vec3(default_grey);
+      m.texture_modulates = true;
+      scene_.materials.push_back(m);
+      default_material_ = int(scene_.materials.size()) - 1;
+    }
+    return default_material_;
+  }
+
+  // ---- geometry ----------------------------------------------------------
+
+  int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
+    const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
+    const size_t faces = s.mesh.num_face_vertices.size();
+    // After triangulation every face is a triangle; be defensive anyway.
+    std::vector<size_t> face_start(faces);
+    {
+      size_t o = 0;
+      for (size_t f = 0; f < faces; ++f) {
+        face_start[f] = o;
+        o += s.mesh.num_face_vertices[f];
+      }
+      if (o != idx.size()) throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
+    }
+    auto pos = [&](int v) { return vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]); };
+    auto corner_normal = [&](const tinyobj::index_t& ix) {
+      return normals_ok && ix.normal_index >= 0 && normal_usable_[size_t(ix.normal_index)] ? ix.normal_index : -1;
+    };
+    auto corner_uv = [&](const tinyobj::index_t& ix) { return uvs_ok ? ix.texcoord_index : -1; };
+
+    bool any_uv = false, any_normal = false, all_normals = true;
+    for (size_t f = 0; f < faces; ++f) {
+      if (s.mesh.num_face_vertices[f] != 3) continue;
+      for (int k = 0; k < 3; ++k) {
+        const tinyobj::index_t& ix = idx[face_start[f] + k];
+        any_uv |= corner_uv(ix) >= 0;
+        bool hn = corner_normal(ix) >= 0;
+        any_normal |= hn;
+        all_normals &= hn;
+      }
+    }
+    // Normals wanted per vertex unless the file gives none and the caller
+    // asked for facets: then the mesh has none and the renderer uses face normals.
+    const bool generate = !all_normals;
+    const bool per_vertex_normals = !(options_.flat && !any_normal);
+
+    // Smooth generated normals: per position, the sum of the unit normals of
+    // the faces around it, each weighted by the face's angle at that corner
+    // (Thuermer & Wuethrich), so that the result does not depend on how a
+    // polygon was split into triangles.
+    std::unordered_map<int, vec3> smooth;
+    if (generate && !options_.flat) {
+      for (size_t f = 0; f < faces; ++f) {
+        if (s.mesh.num_face_vertices[f] != 3) continue;
+        int v[3];
+        vec3 p[3];
+        for (int k = 0; k < 3; ++k) {
+          v[k] = idx[face_start[f] + k].vertex_index;
+          p[k] = pos(v[k]);
+        }
+        vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+        float len = glm::length(n);
+        if (!(len > 0.f) || !std::isfinite(len)) continue;
+        n /= len;
+        for (int k = 0; k < 3; ++k) {
+          vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+          float l1 = glm::length(e1), l2 = glm::length(e2);
+          if (!(l1 > 0.f && l2 > 0.f)) continue;
+          float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
+          smooth[v[k]] += std::acos(c) * n;
+        }
+      }
+    }
+
+    Mesh mesh;
+    mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
+    mesh.source_path = path_;
+    std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertices;
+    std::vector<int> face_mats;
+    face_mats.reserve(faces);
+    mesh.indices.reserve(faces * 3);
+    for (size_t f = 0; f < faces; ++f) {
+      if (s.mesh.num_face_vertices[f] != 3) continue;
+      vec3 face_normal(0.f);
+      if (generate && options_.flat) {
+        vec3 p0 = pos(idx[face_start[f]].vertex_index), p1 = pos(idx[face_start[f] + 1].vertex_index),
+             p2 = pos(idx[face_start[f] + 2].vertex_index);
+        vec3 n = glm::cross(p1 - p0, p2 - p0);
+        float len = glm::length(n);
+        if (len > 0.f && std::isfinite(len)) face_normal = n / len;
+      }
+      for (int k = 0; k < 3; ++k) {
+        const tinyobj::index_t& ix = idx[face_start[f] + k];
+        int t = corner_uv(ix), n = corner_normal(ix);
+        // A corner without a normal: smooth ones are shared per position
+        // (key -1); faceted ones belong to their face alone.
+        int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(f) : -1));
+        VertexKey key{ix.vertex_index, t, nkey};
+        auto [it, inserted] = vertices.try_emplace(key, uint32_t(mesh.positions.size()));
+        if (inserted) {
+          mesh.positions.push_back(pos(ix.vertex_index));
+          if (any_uv) mesh.uvs.push_back(t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f));
+          if (per_vertex_normals) {
+            vec3 nv(0.f);
+            if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
+            else if (options_.flat) nv = face_normal;
+            else if (auto sit = smooth.find(ix.vertex_index); sit != smooth.end()) nv = sit->second;
+            float len = glm::length(nv);
+            mesh.normals.push_back(len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f));
+          }
+          if (has_colors_) {
+            size_t v = size_t(ix.vertex_index);
+            mesh.colors.push_back(vec3(a.colors[3 * v], a.colors[3 * v + 1], a.colors[3 * v + 2]));
+          }
+        }
+        mesh.indices.push_back(it->second);
+      }
+      int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+      face_mats.push_back(mid >= 0 && size_t(mid) < lib_.materials.size() ? mid : default_material());
+    }
+    if (mesh.indices.empty()) return invalid;
+    bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
+    mesh_node_material_ = face_mats[0];
+    if (!uniform) mesh.face_materials = std::move(face_mats);
+    scene_.meshes.push_back(std::move(mesh));
+    return int(scene_.meshes.size()) - 1;
+  }
+
+  // ---- errors and warnings -------------------------------------------------
+
+  [[noreturn]] void fail_from_tinyobj(const std::string& err) {
+    std::string e = trim(err);
+    // tinyobjloader: "Failed parse `f' line(e.g. zero value for face index. line 12.)"
+    size_t at = e.rfind("line ");
+    if (at != std::string::npos) {
+      size_t line = std::strtoul(e.c_str() + at + 5, nullptr, 10);
+      if (line > 0) {
+        std::string what = e.find("`f'") != std::string::npos   ? "a face with an index of 0 or no number (OBJ indices start at 1)"
+                           : e.find("`l'") != std::string::npos ? "a line with an index of 0 or no number"
+                           : e.find("`p'") != std::string::npos ? "a point with an index of 0 or no number"
+                                                                : e;
+        throw Error(path_ + ":" + std::to_string(line) + ": " + what);
+      }
+    }
+    throw Error(path_ + ": cannot read OBJ: " + (e.empty() ? std::string("unknown error") : e));
+  }
+
+  [[noreturn]] void fail_bad_index(int kind, size_t count) {
+    BadIndex b;
+    if (find_bad_index(text_, kind, &b))
+      throw Error(path_ + ":" + std::to_string(b.line) + ": face refers to vertex " + std::to_string(b.index) +
+                  " but only " + std::to_string(b.count) + " vertices are declared before it");
+    throw Error(path_ + ": a face refers to a vertex that does not exist (the file has " + std::to_string(count) +
+                " vertices)");
+  }
+
+  void warn_bad_index(int kind, size_t count, const char* what) {
+    BadIndex b;
+    std::string item = kind == 1 ? "texture coordinate " : "normal ";
+    if (find_bad_index(text_, kind, &b))
+      warn(path_ + ":" + std::to_string(b.line) + ": face refers to " + item + std::to_string(b.index) + " but only " +
+           std::to_string(b.count) + " are declared before it; " + what + " of this file are ignored");
+    else
+      warn(path_ + ": faces refer to " + what + " that do not exist (the file has " + std::to_string(count) + "); " +
+           what + " of this file are ignored");
+  }
+
+  void handle_tinyobj_warnings(const std::string& warn_text) {
+    std::istringstream in(warn_text);
+    std::string l;
+    while (std::getline(in, l)) {
+      l = trim(l);
+      if (l.empty() || l == ".") continue;
+      // Out-of-range indices are checked (with line numbers) by us; tinyobj
+      // drops quads with a bad vertex index, so those are errors here.
+      if (l.rfind("Vertex indices out of bounds", 0) == 0 || l.rfind("Face with invalid vertex index", 0) == 0)
+        fail_bad_index(0, 0);
+      if (l.rfind("Vertex normal indices out of bounds", 0) == 0 ||
+          l.rfind("Vertex texcoord indices out of bounds", 0) == 0)
+        continue;
+      if (l.rfind("Degenerated face found", 0) == 0) l = "faces with fewer than three vertices are skipped";
+      if (l.rfind("material [", 0) == 0) l += " (those faces use the default material)";
+      warn(path_ + ": " + l);
+    }
+  }
+
+  std::string path_;
+  ObjReadOptions options_;
+  std::vector<std::string>* warnings_;
+  std::set<std::string> seen_warnings_;
+  fs::path dir_;
+  std::string text_;
+  MtlLibrary lib_;
+  Scene scene_;
+  std::map<std::string, int> texture_cache_;
+  int default_material_ = invalid;
+  int mesh_node_material_ = invalid;
+  bool has_colors_ = false;
+  std::vector<uint8_t> normal_usable_;  // per written normal
+};
+
+}  // namespace
+
+Scene read_obj_scene(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings) {
+  return ObjSceneBuilder(path, options, warnings).build();
+}
+
+}  // namespace rayform

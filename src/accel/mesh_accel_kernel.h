@@ -1,0 +1,190 @@
+// Traversal kernels of MeshAccel (closest hit and any hit), included by
+// mesh_accel.cpp once per node-test flavour (no include guard): the including
+// namespace provides NodeRay and node_hits<Oct>(node, node_ray, tmax,
+// t_enter), which returns the mask of the eight children whose box the ray
+// enters before tmax; TriRay, intersect_packet and octant come from
+// mesh_accel.cpp. Each kernel is instantiated for the eight octants of the
+// ray direction (constant plane rows in the node test).
+//
+// Closest hit: nearest child first, the others pushed with their entry
+// distance and skipped when popped behind the closest hit found meanwhile.
+
+template <int Oct>
+inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, float& tmax, MeshHit* hit) {
+  const WideBvhNode* nodes = m.bvh.nodes.data();
+  const TrianglePacket* packets = m.packets.data();
+  struct Entry {
+    uint32_t ref;
+    float t;
+  };
+  Entry stack[stack_size];
+  int top = 0;
+  uint32_t ref = 0;
+  bool found = false;
+  uint32_t hit_id = 0;
+  float hit_e[3] = {0.f, 0.f, 0.f}, hit_inv = 0.f;
+  for (;;) {
+    if (!WideBvhNode::is_leaf(ref)) {
+      const WideBvhNode& n = nodes[ref];
+#if defined(__GNUC__)
+      __builtin_prefetch(n.child);  // the child references are read only after the box test
+#endif
+      alignas(32) float tn[WideBvhNode::width];
+      int mask = node_hits<Oct>(n, nr, tmax, tn);
+#ifdef RAYFORM_COUNT
+      g_count.nodes++; g_count.hits[std::popcount(unsigned(mask))]++;
+#endif
+      if (mask != 0) {
+        int i = lowest_bit(mask);
+        mask &= mask - 1;
+        if (mask == 0) {  // one child hit: go on without the stack
+          ref = n.child[i];
+          continue;
+        }
+        int j = lowest_bit(mask);
+        mask &= mask - 1;
+        if (mask == 0) {  // two: the nearer first
+          if (tn[j] < tn[i]) std::swap(i, j);
+          prefetch_child(nodes, packets, n.child[j]);
+          stack[top++] = {n.child[j], tn[j]};
+          ref = n.child[i];
+          continue;
+        }
+        // More: push all, sorted so that the nearest is on top, and pop it.
+        const int base = top;
+        stack[top++] = {n.child[i], tn[i]};
+        stack[top++] = {n.child[j], tn[j]};
+        while (mask) {
+          int k = lowest_bit(mask);
+          mask &= mask - 1;
+          stack[top++] = {n.child[k], tn[k]};
+        }
+        for (int a = base; a < top - 1; ++a) prefetch_child(nodes, packets, stack[a].ref);
+        for (int a = base + 1; a < top; ++a) {  // insertion sort, descending t
+          Entry e = stack[a];
+          int b = a;
+          while (b > base && stack[b - 1].t < e.t) {
+            stack[b] = stack[b - 1];
+            --b;
+          }
+          stack[b] = e;
+        }
+        ref = stack[--top].ref;
+        continue;
+      }
+    } else {
+      const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
+      for (uint32_t k = first; k < first + count; ++k) {
+        PacketHits h = intersect_packet(packets[k], tr, tmax);
+#ifdef RAYFORM_COUNT
+        g_count.packets++; g_count.packet_hits += h.mask != 0;
+#endif
+        if (!h.mask) continue;
+        alignas(16) float ts[4];
+        simd::store(ts, h.t);
+        int best = lowest_bit(h.mask);
+        for (int rest = h.mask & (h.mask - 1); rest; rest &= rest - 1) {  // the lowest lane wins ties,
+          int lane = lowest_bit(rest);                                     // as the scalar loop's order would
+          if (ts[lane] < ts[best]) best = lane;
+        }
+        tmax = ts[best];
+        alignas(16) float e0[4], e1[4], e2[4], inv[4];
+        simd::store(e0, h.e0);
+        simd::store(e1, h.e1);
+        simd::store(e2, h.e2);
+        simd::store(inv, h.inv_det);
+        hit_id = packets[k].id[best];
+        hit_e[0] = e0[best];
+        hit_e[1] = e1[best];
+        hit_e[2] = e2[best];
+        hit_inv = inv[best];
+        found = true;
+      }
+    }
+    // Pop the next entry still in front of the closest hit.
+    for (;;) {
+      if (top == 0) {
+        if (found)
+          *hit = {hit_id, hit_e[0] * hit_inv, hit_e[1] * hit_inv, hit_e[2] * hit_inv};
+        return found;
+      }
+      const Entry& e = stack[--top];
+      if (e.t <= tmax) {
+        ref = e.ref;
+        break;
+      }
+    }
+  }
+}
+
+// Any hit: children in index order, stops at the first hit.
+template <int Oct>
+inline bool occluded_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, const float tmax) {
+  const WideBvhNode* nodes = m.bvh.nodes.data();
+  const TrianglePacket* packets = m.packets.data();
+  uint32_t stack[stack_size];
+  int top = 0;
+  uint32_t ref = 0;
+  for (;;) {
+    if (!WideBvhNode::is_leaf(ref)) {
+      const WideBvhNode& n = nodes[ref];
+#if defined(__GNUC__)
+      __builtin_prefetch(n.child);  // the child references are read only after the box test
+#endif
+      alignas(32) float tn[WideBvhNode::width];
+      int mask = node_hits<Oct>(n, nr, tmax, tn);
+      if (mask != 0) {
+        int i = lowest_bit(mask);
+        mask &= mask - 1;
+        while (mask) {
+          int k = lowest_bit(mask);
+          mask &= mask - 1;
+          stack[top++] = n.child[k];
+          prefetch_child(nodes, packets, n.child[k]);
+        }
+        ref = n.child[i];
+        continue;
+      }
+    } else {
+      const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
+      for (uint32_t k = first; k < first + count; ++k)
+        if (intersect_packet(packets[k], tr, tmax).mask) return true;
+    }
+    if (top == 0) return false;
+    ref = stack[--top];
+  }
+}
+
+inline bool intersect(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hit) {
+  if (m.bvh.nodes.empty()) return false;
+  const RaySlabs s = make_ray_slabs(ray);
+  const NodeRay nr(s, ray.tmin);
+  const TriRay tr(ray);
+  switch (octant(s)) {
+    case 0: return intersect_octant<0>(m, nr, tr, tmax, hit);
+    case 1: return intersect_octant<1>(m, nr, tr, tmax, hit);
+    case 2: return intersect_octant<2>(m, nr, tr, tmax, hit);
+    case 3: return intersect_octant<3>(m, nr, tr, tmax, hit);
+    case 4: return intersect_octant<4>(m, nr, tr, tmax, hit);
+    case 5: return intersect_octant<5>(m, nr, tr, tmax, hit);
+    case 6: return intersect_octant<6>(m, nr, tr, tmax, hit);
+    default: return intersect_octant<7>(m, nr, tr, tmax, hit);
+  }
+}
+
+inline bool occluded(const MeshAccel& m, const Ray& ray) {
+  if (m.bvh.nodes.empty()) return false;
+  const RaySlabs s = make_ray_slabs(ray);
+  const NodeRay nr(s, ray.tmin);
+  const TriRay tr(ray);
+  switch (octant(s)) {
+    case 0: return occluded_octant<0>(m, nr, tr, ray.tmax);
+    case 1: return occluded_octant<1>(m, nr, tr, ray.tmax);
+    case 2: return occluded_octant<2>(m, nr, tr, ray.tmax);
+    case 3: return occluded_octant<3>(m, nr, tr, ray.tmax);
+    case 4: return occluded_octant<4>(m, nr, tr, ray.tmax);
+    case 5: return occluded_octant<5>(m, nr, tr, ray.tmax);
+    case 6: return occluded_octant<6>(m, nr, tr, ray.tmax);
+    default: return occluded_octant<7>(m, nr, tr, ray.tmax);
+  }
+}

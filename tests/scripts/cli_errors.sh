@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# The command line on bad input: every case must exit non-zero (without
+# crashing), print ONE message line naming the problem (file:line:column for
+# scene errors; the usage hint line of the CLI is allowed besides it), and
+# leave NO file behind in the output folder, not even a temporary one.
+# Also: the course flags work in any order and give the same picture.
+# Needs no third-party data.
+source "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+in="$tmp/in"; mkdir -p "$in"
+
+cat >"$in/ok.txt" <<'EOF'
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Lights { numLights 1 DirectionalLight { direction -0.3 -0.5 -1 color 0.9 0.9 0.9 } }
+Background { color 0.1 0.2 0.3 ambientLight 0.1 0.1 0.1 }
+Materials { numMaterials 1 Material { diffuseColor 0.8 0.3 0.2 } }
+Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1.5 } }
+EOF
+# Line 4, column 23: 'radius' where the third coordinate should be.
+cat >"$in/bad.txt" <<'EOF'
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Group {
+  numObjects 1
+  Sphere { center 0 0 radius 1 }
+}
+EOF
+# Line 3, column 14: MaterialIndex 1 with one material.
+cat >"$in/badindex.txt" <<'EOF'
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Materials { numMaterials 1 Material { } }
+Group { numObjects 1 MaterialIndex 1 Sphere { radius 1 } }
+EOF
+# Line 2, column 1: end of file inside the Group.
+printf 'PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }\nGroup { numObjects 1' >"$in/truncated.txt"
+
+failures=0
+fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
+
+# expect_failure NAME REGEX ARGS...: runs rayform ARGS in an empty folder.
+expect_failure() {
+  local name=$1 pattern=$2; shift 2
+  local out="$tmp/out-$name" before=$failures
+  mkdir -p "$out"
+  (cd "$out" && "$RAYFORM_BIN" "$@") >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  if [ $rc -eq 0 ]; then fail "$name" "exit status 0"; fi
+  if [ $rc -ge 128 ]; then fail "$name" "crashed (exit status $rc)"; fi
+  # Message lines: everything on stderr but the usage hints.
+  local msg
+  msg=$(grep -v -e "^(run 'rayform --help' for usage)$" -e '^Run with --help for more information\.$' -e '^$' "$tmp/stderr")
+  local n
+  n=$(printf '%s' "$msg" | grep -c '')
+  if [ "$n" -ne 1 ]; then fail "$name" "expected one message line, got $n: $(cat "$tmp/stderr")"; fi
+  if ! grep -qE -- "$pattern" <<<"$msg"; then fail "$name" "message does not match /$pattern/: $msg"; fi
+  local left
+  left=$(ls -A "$out")
+  if [ -n "$left" ]; then fail "$name" "files left behind: $left"; fi
+  [ $failures -eq $before ] && echo "ok   [$name] exit $rc: $msg"
+}
+
+ok="$in/ok.txt"
+# Image size.
+expect_failure size-zero '-size.*positive' -input "$ok" -size 0 20 -output o.png
+expect_failure size-zero-height '-size.*positive' -input "$ok" -size 20 0 -output o.png
+expect_failure size-negative '-size.*positive' -input "$ok" -size -20 20 -output o.png
+expect_failure size-missing-height '-size' -input "$ok" -size 20 -output o.png
+expect_failure size-not-a-number "-size.*'x'" -input "$ok" -size 20 x -output o.png
+expect_failure render-size-zero '--size.*0x20' render "$ok" -o o.png --size 0x20
+expect_failure render-size-negative '--size' render "$ok" -o o.png --size 20x-3
+# Options.
+expect_failure unknown-option "unknown option '-bogus'" -input "$ok" -size 20 20 -output o.png -bogus
+expect_failure unknown-option-first "unknown option '-inptu'|-inptu" -inptu "$ok" -size 20 20 -output o.png
+expect_failure render-unknown-option 'bogus' render "$ok" -o o.png --bogus
+expect_failure missing-input 'missing -input' -size 20 20 -output o.png
+expect_failure missing-output 'missing -output' -input "$ok" -size 20 20
+expect_failure render-missing-output 'output' render "$ok" --size 20x20
+expect_failure depth-range 'MAX > MIN|depth' -input "$ok" -size 20 20 -output o.png -depth 12 8 d.png
+# Unwritable outputs.
+expect_failure output-folder-missing "nofolder/o.png.*nofolder" -input "$ok" -size 20 20 -output nofolder/o.png
+expect_failure output-unknown-extension "o\.xyz" -input "$ok" -size 20 20 -output o.xyz
+expect_failure depth-folder-missing "nofolder/d.png" -input "$ok" -size 20 20 -output o.png -depth 8 12 nofolder/d.png
+expect_failure normals-unknown-extension "n\.xyz" -input "$ok" -size 20 20 -output o.png -normals n.xyz
+# The output names an existing folder: that folder must stay untouched.
+mkdir -p "$tmp/taken.png"
+expect_failure output-is-a-folder "taken\.png" -input "$ok" -size 20 20 -output "$tmp/taken.png"
+[ -d "$tmp/taken.png" ] && [ -z "$(ls -A "$tmp/taken.png")" ] || fail output-is-a-folder "the folder was changed"
+# A later output that cannot be written must not leave the earlier ones
+# behind (/proc accepts no new files, even from root).
+expect_failure normals-unwritable "/proc/n\.png" -input "$ok" -size 20 20 -output o.png -depth 8 12 d.png -normals /proc/n.png
+expect_failure depth-unwritable "/proc/d\.png" -input "$ok" -size 20 20 -output o.png -depth 8 12 /proc/d.png
+# Bad scenes: the message names file:line:column.
+expect_failure scene-missing "nothere\.txt" -input "$in/nothere.txt" -size 20 20 -output o.png
+expect_failure scene-unknown-format "scene\.xyz" -input "$in/scene.xyz" -size 20 20 -output o.png
+expect_failure scene-malformed "$in/bad\.txt:4:23: expected a number, found 'radius'" -input "$in/bad.txt" -size 20 20 -output o.png
+expect_failure scene-malformed-render "$in/bad\.txt:4:23: " render "$in/bad.txt" -o o.png --size 20x20
+expect_failure scene-material-index "$in/badindex\.txt:3:36: MaterialIndex 1 is out of range" -input "$in/badindex.txt" -size 20 20 -output o.png
+expect_failure scene-truncated "$in/truncated\.txt:2:21: unexpected end of file" -input "$in/truncated.txt" -size 20 20 -output o.png -depth 8 12 d.png -normals n.png
+
+# Course flags in any order: the same three pictures, byte for byte.
+order_dir="$tmp/order"; mkdir -p "$order_dir"
+run_order() {
+  local tag=$1; shift
+  (cd "$order_dir" && "$RAYFORM_BIN" "$@") >"$tmp/stdout" 2>"$tmp/stderr" || fail "order-$tag" "exit $?: $(cat "$tmp/stderr")"
+}
+run_order a -input "$ok" -size 24 16 -output a.png -depth 8 12 a_d.png -normals a_n.png
+run_order b -normals b_n.png -output b.png -depth 8 12 b_d.png -size 24 16 -input "$ok"
+run_order c -depth 8 12 c_d.png -input "$ok" -normals c_n.png -size 24 16 -output c.png
+run_order d -output d.png -size 24 16 -normals d_n.png -input "$ok" -depth 8 12 d_d.png
+for t in b c d; do
+  for suffix in "" _d _n; do
+    if ! cmp -s "$order_dir/a$suffix.png" "$order_dir/$t$suffix.png"; then fail "order-$t" "$t$suffix.png differs from a$suffix.png"; fi
+  done
+done
+before=$failures
+size=$(oiiotool "$order_dir/a.png" --echo "{TOP.width}x{TOP.height}" 2>/dev/null)
+[ "$size" = "24x16" ] || fail order "a.png is '$size', not 24x16"
+[ "$(ls -A "$order_dir" | wc -l)" -eq 12 ] || fail order "expected exactly the 12 pictures, found: $(ls -A "$order_dir")"
+[ $failures -eq $before ] && echo "ok   [order] flags in four orders give identical pictures"
+
+# No temporary picture anywhere (they are written beside the target as
+# .NAME.tmpPID.EXT, e.g. beside taken.png above).
+stray=$(find "$tmp" -name '.*.tmp*')
+[ -z "$stray" ] || fail temporaries "left behind: $stray"
+
+if [ $failures -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
+echo "all CLI error checks passed"

@@ -1,0 +1,224 @@
+// prepare_scene (src/render/prepared_scene.h): the node tree flattened into
+// instances, each used mesh built once however often it is instanced (and
+// read once by the course reader), only the textures of used materials
+// decoded, and the feature flags the render loop relies on.
+#include "course_txt/course_reader.h"
+#include "render/prepared_scene.h"
+#include "scene/error.h"
+#include "scene/procedural_mesh.h"
+#include "test_paths.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace rayform {
+namespace {
+namespace fs = std::filesystem;
+
+void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+const char* kCubeObj =
+    "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+    "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+
+Node shape_node(ShapeKind kind, int shape, int material = invalid) {
+  Node n;
+  n.kind = Node::Kind::shape;
+  n.shape_kind = kind;
+  n.shape = shape;
+  n.material = material;
+  return n;
+}
+
+// Root group 0 with the given children appended.
+Scene scene_with(std::vector<Node> children) {
+  Scene s;
+  s.cameras.push_back(Camera{});
+  s.nodes.push_back(Node{});
+  s.root = 0;
+  for (Node& n : children) {
+    s.nodes.push_back(std::move(n));
+    s.nodes[0].children.push_back(int(s.nodes.size()) - 1);
+  }
+  return s;
+}
+
+TEST(Prepare, MeshInstancedSeveralTimesIsReadAndBuiltOnce) {
+  auto dir = test::temp_dir("prepare_once");
+  write_file(dir / "cube.obj", kCubeObj);
+  // The same file named three ways, under three transforms.
+  std::string text = R"(
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Group { numObjects 3
+  Transform { Translate -3 0 0 TriangleMesh { obj_file cube.obj } }
+  Transform { Translate 3 0 0 TriangleMesh { obj_file ./cube.obj } }
+  Transform { UniformScale 0.5 TriangleMesh { obj_file )" + (dir / "cube.obj").string() + R"( } }
+}
+)";
+  write_file(dir / "scene.txt", text);
+  CourseScene cs = read_course_scene((dir / "scene.txt").string());
+  ASSERT_EQ(cs.scene.meshes.size(), 1u) << "one OBJ file, one Mesh";
+  EXPECT_EQ(cs.scene.meshes[0].triangle_count(), 12u);
+  PreparedScene p = prepare_scene(cs.scene);
+  ASSERT_EQ(p.instances.size(), 3u);
+  for (const Instance& inst : p.instances) {
+    EXPECT_EQ(inst.kind, ShapeKind::mesh);
+    EXPECT_EQ(inst.shape, 0);
+    EXPECT_TRUE(inst.has_transform);
+  }
+  ASSERT_EQ(p.meshes.size(), 1u) << "one accelerator per Scene mesh, not per instance";
+  EXPECT_EQ(p.meshes[0].triangles.size(), 12u);
+  // World bounds of the three instances: x from -4 to 4.
+  EXPECT_EQ(p.bounds.lo.x, -4.f);
+  EXPECT_EQ(p.bounds.hi.x, 4.f);
+  fs::remove_all(dir);
+}
+
+TEST(Prepare, OnlyUsedMeshesAreBuilt) {
+  Scene s = scene_with({shape_node(ShapeKind::mesh, 1)});
+  s.meshes.push_back(make_icosphere(1));
+  s.meshes.push_back(make_cube());
+  s.meshes.push_back(make_icosphere(2));
+  PreparedScene p = prepare_scene(s);
+  ASSERT_EQ(p.meshes.size(), 3u);
+  EXPECT_TRUE(p.meshes[0].bvh.nodes.empty());
+  EXPECT_EQ(p.meshes[1].triangles.size(), 12u);
+  EXPECT_TRUE(p.meshes[2].bvh.nodes.empty());
+}
+
+Texture embedded_texture() {
+  Texture t;
+  t.width = 2;
+  t.height = 1;
+  t.channels = 3;
+  t.pixels = {255, 0, 0, 0, 255, 0};
+  t.lookup = Texture::Lookup::course;
+  return t;
+}
+
+TEST(Prepare, UnusedTexturesAreNotDecoded) {
+  Scene s = scene_with({shape_node(ShapeKind::sphere, 0, 1)});
+  s.spheres.push_back({});
+  Texture missing;
+  missing.path = "/nonexistent/never-decoded.bmp";  // decoding it would throw
+  s.textures = {missing, embedded_texture()};
+  s.materials.resize(2);
+  s.materials[0].diffuse_texture = 0;  // no shape uses material 0
+  s.materials[1].diffuse_texture = 1;
+  PreparedScene p;
+  ASSERT_NO_THROW(p = prepare_scene(s));
+  ASSERT_EQ(p.textures.size(), 2u);
+  EXPECT_TRUE(p.textures[0].empty()) << "texture of an unused material was decoded";
+  ASSERT_EQ(p.textures[1].width, 2);
+  EXPECT_EQ(p.textures[1].texel(1, 0)[1], 1.f);
+  EXPECT_TRUE(p.features.textures);
+  // Used, the missing file is an error.
+  s.nodes[1].material = 0;
+  EXPECT_THROW(prepare_scene(s), Error);
+}
+
+TEST(Prepare, CourseSceneWithAnUnusedBrokenTexture) {
+  auto dir = test::temp_dir("prepare_tex");
+  write_file(dir / "broken.bmp", "this is not a picture");
+  std::string text = R"(
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Materials { numMaterials 2
+  Material { diffuseColor 1 0 0 }
+  Material { texture broken.bmp } }
+Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1 } }
+)";
+  write_file(dir / "scene.txt", text);
+  CourseScene cs = read_course_scene((dir / "scene.txt").string());
+  ASSERT_EQ(cs.scene.textures.size(), 1u);
+  PreparedScene p;
+  ASSERT_NO_THROW(p = prepare_scene(cs.scene));
+  EXPECT_TRUE(p.textures[0].empty());
+  EXPECT_FALSE(p.features.textures);
+  // The same scene using material 1 must fail, naming the picture.
+  std::string used = text;
+  used.replace(used.find("MaterialIndex 0"), 15, "MaterialIndex 1");
+  write_file(dir / "scene.txt", used);
+  CourseScene cu = read_course_scene((dir / "scene.txt").string());
+  try {
+    prepare_scene(cu.scene);
+    FAIL() << "decoding a broken texture should fail";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.bmp"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Prepare, FlattensTheTreeWithWorldMatrices) {
+  Scene s = scene_with({});
+  s.spheres.push_back({vec3(0.f), 1.f});
+  Node outer;
+  outer.kind = Node::Kind::transform;
+  outer.local = glm::translate(mat4(1.f), vec3(1, 2, 3));
+  Node inner;
+  inner.kind = Node::Kind::transform;
+  inner.local = glm::scale(mat4(1.f), vec3(2.f));
+  Node group;  // a nested group holding the same sphere twice
+  s.nodes.push_back(outer);     // 1
+  s.nodes.push_back(inner);     // 2
+  s.nodes.push_back(group);     // 3
+  s.nodes.push_back(shape_node(ShapeKind::sphere, 0, invalid));  // 4
+  s.nodes[0].children = {1, 4};
+  s.nodes[1].children = {2};
+  s.nodes[2].children = {3};
+  s.nodes[3].children = {4};
+  PreparedScene p = prepare_scene(s);
+  ASSERT_EQ(p.instances.size(), 2u);
+  // Depth-first: the transformed one first.
+  EXPECT_TRUE(p.instances[0].has_transform);
+  EXPECT_EQ(p.instances[0].to_world, glm::translate(mat4(1.f), vec3(1, 2, 3)) * glm::scale(mat4(1.f), vec3(2.f)));
+  EXPECT_EQ(transform_point(p.instances[0].to_object, vec3(3, 4, 5)), vec3(1, 1, 1));
+  EXPECT_EQ(p.instances[0].world_bounds.lo, vec3(-1, 0, 1));
+  EXPECT_EQ(p.instances[0].world_bounds.hi, vec3(3, 4, 5));
+  EXPECT_FALSE(p.instances[1].has_transform);
+  EXPECT_EQ(p.instances[0].material, 0) << "no material: the default one appended after the scene's (none here)";
+  ASSERT_EQ(p.materials.size(), 1u);
+  EXPECT_TRUE(p.features.transforms);
+  EXPECT_FALSE(p.features.planes);
+}
+
+TEST(Prepare, FeatureFlags) {
+  Scene s = scene_with({shape_node(ShapeKind::sphere, 0, 0), shape_node(ShapeKind::plane, 0, 1)});
+  s.spheres.push_back({});
+  s.planes.push_back({});
+  s.materials.resize(3);
+  s.materials[2].specular = vec3(1.f);  // unused: does not count
+  PreparedScene p = prepare_scene(s);
+  EXPECT_FALSE(p.features.specular);
+  EXPECT_TRUE(p.features.planes);
+  EXPECT_FALSE(p.features.transforms);
+  EXPECT_FALSE(p.features.point_lights);
+  EXPECT_FALSE(p.features.falloff);
+  EXPECT_EQ(p.plane_instances.size(), 1u);
+  EXPECT_EQ(p.top.primitives.size(), 1u) << "planes stay outside the BVH";
+  s.materials[1].specular = vec3(0.5f);
+  Light pl;
+  pl.kind = Light::Kind::point;
+  s.lights.push_back(pl);
+  PreparedScene q = prepare_scene(s);
+  EXPECT_TRUE(q.features.specular);
+  EXPECT_TRUE(q.features.point_lights);
+  EXPECT_FALSE(q.features.falloff);
+  s.lights[0].falloff = 0.5f;
+  EXPECT_TRUE(prepare_scene(s).features.falloff);
+}
+
+TEST(Prepare, BadGraphsAreErrors) {
+  Scene s = scene_with({shape_node(ShapeKind::sphere, 3)});  // no sphere 3
+  EXPECT_THROW(prepare_scene(s), Error);
+  Scene c = scene_with({});
+  c.nodes[0].children = {0};  // the root is its own child
+  EXPECT_THROW(prepare_scene(c), Error);
+}
+
+}  // namespace
+}  // namespace rayform
