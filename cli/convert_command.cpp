@@ -1,8 +1,94 @@
+// `rayform convert IN OUT`: reads any scene rayform reads and writes it as a
+// course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
+// What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "scene/error.h"
+#include "scene/scene_stats.h"
+#include "scene_writer.h"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
 
 namespace rayform::cli {
+namespace fs = std::filesystem;
+namespace {
 
-// `rayform convert` arrives with the writers (issue: format conversion).
-void add_convert_command(CLI::App&) {}
+struct ConvertArgs {
+  std::string input, output, dialect;
+  SaveOptions save;
+  bool tessellate_only = false;
+  bool stats = false;
+};
+
+// One line of counts for --stats (and the conversion tests).
+std::string counts(const Scene& scene) {
+  SceneStats s = scene_stats(scene);
+  MeshTotals m = mesh_totals(scene);
+  return "nodes " + std::to_string(s.nodes) + ", instances " + std::to_string(s.instances) + ", spheres " +
+         std::to_string(s.spheres) + ", planes " + std::to_string(s.planes) + ", triangles " +
+         std::to_string(s.triangles) + ", meshes " + std::to_string(s.meshes) + ", mesh vertices " +
+         std::to_string(m.vertices) + ", mesh uvs " + std::to_string(m.uvs) + ", mesh triangles " +
+         std::to_string(m.triangles) + ", materials " + std::to_string(s.materials) + ", textures " +
+         std::to_string(s.textures) + ", lights " + std::to_string(s.lights) + ", cameras " + std::to_string(s.cameras);
+}
+
+void run_convert(const ConvertArgs& a) {
+  std::error_code ec;
+  if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
+    throw Error(a.output + ": the output is the input file; choose another name");
+  scene_format_from_path(a.output);  // unknown output extension: fail before reading
+  LoadedScene loaded = load_scene(a.input, LoadOptions{dialect_from_string(a.dialect)});
+  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+
+  SaveOptions o = a.save;
+  o.shape_extras = !a.tessellate_only;
+  // The course dialect to write: as asked, else the one the input was read in.
+  o.dialect = dialect_from_string(a.dialect);
+  if (!o.dialect && loaded.format == SceneFormat::course_txt) o.dialect = loaded.dialect;
+  std::vector<std::string> messages;
+  std::string ext = fs::path(a.output).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (o.embed && ext != ".gltf")
+    messages.push_back(fs::path(a.output).filename().string() + ": --embed applies to .gltf output only" +
+                       (ext == ".glb" ? " (a .glb always holds everything)" : ""));
+  if (a.tessellate_only && ext != ".gltf" && ext != ".glb")
+    messages.push_back(fs::path(a.output).filename().string() + ": --tessellate-only applies to glTF output only");
+
+  SaveResult r = save_scene(loaded.scene, a.output, o, &messages);
+  for (const std::string& m : messages) std::cerr << "note: " << m << "\n";
+  if (a.stats) {
+    std::cout << "read: " << a.input << ": " << counts(loaded.scene) << "\n";
+    std::cout << "wrote: " << a.output << ": stored triangles " << r.stored_triangles << ", files " << r.files.size()
+              << "\n";
+    for (const std::string& f : r.files) std::cout << "  " << f << "\n";
+  }
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app) {
+  auto a = std::make_shared<ConvertArgs>();
+  CLI::App* c = app.add_subcommand("convert", "Convert a scene between course .txt, OBJ+MTL, .gltf and .glb");
+  c->add_option("input", a->input, "Scene to read (.txt, .obj, .gltf, .glb)")->required()->check(CLI::ExistingFile);
+  c->add_option("output", a->output, "Scene to write (.txt, .obj, .gltf, .glb; the extension decides)")->required();
+  c->add_flag("--flatten", a->save.flatten, "Bake every transform into the geometry (one flat list of shapes)");
+  c->add_flag("--embed", a->save.embed, "glTF: buffers and images inside the .gltf (a .glb always holds them)");
+  c->add_option("--sphere-segments", a->save.sphere_segments, "Longitudes of tessellated spheres (bands: half as many)")
+      ->check(CLI::Range(3, 4096))
+      ->capture_default_str();
+  c->add_option("--dialect", a->dialect, "Course dialect to read and write (default: the input's, else as needed)")
+      ->check(CLI::IsMember({"2012", "2019"}));
+  c->add_flag("--tessellate-only", a->tessellate_only,
+              "glTF: spheres and planes as meshes only, without their exact form in extras");
+  c->add_flag("--stats", a->stats, "Print the counts of the scene read and the files written on stdout");
+  c->footer(R"(
+Examples:
+  rayform convert scene01_plane.txt scene01.glb
+  rayform convert duck.obj duck.gltf --embed
+  rayform convert scene01.glb scene01.txt
+  rayform convert model.gltf model.obj --flatten)");
+  c->callback([a] { run_convert(*a); });
+}
 
 }  // namespace rayform::cli
