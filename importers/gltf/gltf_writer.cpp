@@ -529,23 +529,18 @@ class GltfBuilder {
       }
       children.push_back(write_node(c, world));
     }
-    tinygltf::Node* holder = &g;
-    int result;
+    const int mesh = shapes.empty() ? -1 : add_mesh(shapes, n.name);
     if (inner >= 0) {
       // The shapes and children go below the second node of a split matrix.
-      tinygltf::Node& in = model_.nodes[size_t(inner)];
-      if (!shapes.empty()) in.mesh = add_mesh(shapes, n.name);
-      in.children = children;
+      model_.nodes[size_t(inner)].mesh = mesh;
+      model_.nodes[size_t(inner)].children = std::move(children);
       g.children = {inner};
-      result = add_node(std::move(g));
-      holder = nullptr;
     } else {
-      if (!shapes.empty()) holder->mesh = add_mesh(shapes, n.name);
-      holder->children = children;
-      result = add_node(std::move(g));
+      g.mesh = mesh;
+      g.children = std::move(children);
     }
     on_path_[size_t(index)] = 0;
-    return result;
+    return add_node(std::move(g));
   }
 
   // ---- materials and textures ---------------------------------------------------------

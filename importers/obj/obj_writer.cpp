@@ -148,6 +148,7 @@ class ObjBuilder {
       if (m.refraction_index != 0.f) o << "Ni " << format_float(m.refraction_index) << "\n";
       o << "illum 2\n";
       if (m.alpha_cutoff >= 0.f) cutouts_.insert(m.name);
+      if (!m.double_sided) single_sided_.insert(m.name);
       if (!tex.empty()) {
         const Texture& t = scene_.textures[size_t(m.diffuse_texture)];
         o << "map_Kd";
@@ -340,7 +341,7 @@ class ObjBuilder {
         write_shape(sn, s == i ? world : world * sn.local);
       }
     }
-    if (!top || n.kind != Node::Kind::group) nested_ |= !others.empty() && !top;
+    nested_ |= !top && !others.empty();  // groups within groups: a hierarchy OBJ cannot hold
     for (int c : others) visit(c, world, false);
     on_path_[size_t(i)] = 0;
   }
@@ -355,7 +356,7 @@ class ObjBuilder {
     };
     if (!options_.flattened && (baked_transforms_ || nested_))
       note("OBJ has no transforms and no node hierarchy: transforms baked into the vertices, each node's shapes "
-           "written as one 'o' section (" + std::to_string(sections_) + " sections)");
+           "written as one 'o' section (" + std::to_string(sections_) + " section(s))");
     if (spheres_)
       note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
            " segments; OBJ has no spheres)");
@@ -382,6 +383,8 @@ class ObjBuilder {
     if (!baked_.empty()) note("materials " + list(baked_) + ": rotated uv transform baked into the vt values");
     if (!ns_zero_.empty()) note("materials " + list(ns_zero_) + ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
     if (!cutouts_.empty()) note("materials " + list(cutouts_) + ": alpha cut-outs dropped");
+    if (!single_sided_.empty())
+      note("materials " + list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
     if (!course_lookup_.empty())
       note("textures " + list(course_lookup_) + ": the course's texel centres (on whole numbers) are not expressible; "
            "OBJ readers sample half a texel off");
@@ -411,7 +414,7 @@ class ObjBuilder {
   size_t zero_normals_ = 0;
   int spheres_ = 0, planes_ = 0, sections_ = 0;
   float plane_half_ = 0.f;
-  std::set<std::string> replaced_, baked_, ns_zero_, cutouts_, course_lookup_, nearest_, mirror_;
+  std::set<std::string> replaced_, baked_, ns_zero_, cutouts_, single_sided_, course_lookup_, nearest_, mirror_;
 };
 
 }  // namespace
