@@ -12,7 +12,6 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <deque>
 #include <optional>
@@ -622,13 +621,6 @@ constexpr float far_scale = 1.f + 2.f * gamma_bound(3);
 // Deep enough for any tree the builder makes (at most 66 levels of nodes, see
 // MeshBuilder::sah_depth_limit), each pushing at most width - 1 entries.
 constexpr int stack_size = 66 * (WideBvhNode::width - 1) + 1;
-
-#ifdef RAYFORM_COUNT
-}  // namespace
-struct TraversalCounts { uint64_t nodes = 0, packets = 0, packet_hits = 0, hits[9] = {}; };
-TraversalCounts g_count;
-namespace {
-#endif
 
 inline int lowest_bit(int mask) { return std::countr_zero(unsigned(mask)); }
 

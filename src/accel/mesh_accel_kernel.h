@@ -31,9 +31,6 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
 #endif
       alignas(32) float tn[WideBvhNode::width];
       int mask = node_hits<Oct>(n, nr, tmax, tn);
-#ifdef RAYFORM_COUNT
-      g_count.nodes++; g_count.hits[std::popcount(unsigned(mask))]++;
-#endif
       if (mask != 0) {
         int i = lowest_bit(mask);
         mask &= mask - 1;
@@ -76,9 +73,6 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
       const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
       for (uint32_t k = first; k < first + count; ++k) {
         PacketHits h = intersect_packet(packets[k], tr, tmax);
-#ifdef RAYFORM_COUNT
-        g_count.packets++; g_count.packet_hits += h.mask != 0;
-#endif
         if (!h.mask) continue;
         alignas(16) float ts[4];
         simd::store(ts, h.t);
