@@ -237,7 +237,16 @@ class CourseParser {
     return int(scene_.nodes.size()) - 1;
   }
 
+  // Groups and Transforms nest; each is one Scene node level (the top Group is
+  // 1) and their shapes sit one level below.
+  void enter_level(const Token& opener) {
+    if (++depth_ + 1 > max_node_depth)
+      tokens_.fail(opener, "Groups and Transforms are nested too deeply (a scene holds at most " +
+                               std::to_string(max_node_depth) + " levels)");
+  }
+
   int parse_group(const Token& opener) {
+    enter_level(opener);
     tokens_.expect("{", "Group");
     tokens_.expect("numObjects", "Group");
     Token count_token = tokens_.peek_token();
@@ -264,6 +273,7 @@ class CourseParser {
       tokens_.fail(count_token, "numObjects is " + std::to_string(n) + " but the group holds " +
                                     std::to_string(children.size()) + " objects");
     g.children = std::move(children);
+    --depth_;
     return add_node(std::move(g));
   }
 
@@ -342,6 +352,7 @@ class CourseParser {
   }
 
   int parse_transform(const Token& opener) {
+    enter_level(opener);
     tokens_.expect("{", "Transform");
     mat4 m(1.f);
     int child = invalid;
@@ -384,6 +395,7 @@ class CourseParser {
     n.name = "transform";
     n.local = m;
     n.children = {child};
+    --depth_;
     return add_node(std::move(n));
   }
 
@@ -412,6 +424,7 @@ class CourseParser {
   std::vector<std::string> warnings_;
   bool declared_no_lights_ = false;
   int current_material_ = invalid;  // MaterialIndex stays in force across groups
+  int depth_ = 0;                    // Groups and Transforms open around the parser
   Token current_material_token_;
   std::vector<std::pair<int, Token>> material_refs_;
   std::map<std::string, int> mesh_cache_, texture_cache_;

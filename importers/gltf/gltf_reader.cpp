@@ -515,14 +515,12 @@ class GltfSceneBuilder {
     return int(scene_.nodes.size()) - 1;
   }
 
-  // Deeper trees are refused rather than risking the stack (here and in every
-  // later walk of the Scene); real assets stay far below.
-  static constexpr int max_node_depth = 1000;
-
   // `ref` is how the parent names the node, e.g. "nodes[0].children[2]".
-  int convert_node(int i, const std::string& ref, const mat4& parent_world, int depth = 1) {
-    if (depth > max_node_depth)
-      fail(ref + ": the node hierarchy is deeper than " + std::to_string(max_node_depth) + " levels");
+  // `depth` is the node's depth in the Scene (the root group is 1); its mesh
+  // primitives become shape nodes one level deeper, within max_node_depth.
+  int convert_node(int i, const std::string& ref, const mat4& parent_world, int depth = 2) {
+    if (depth + 1 > max_node_depth)
+      fail(ref + ": the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) + " levels)");
     if (i < 0 || size_t(i) >= model_.nodes.size())
       fail(ref + ": node " + std::to_string(i) + " does not exist (the file has " + std::to_string(model_.nodes.size()) +
            " nodes)");

@@ -1,6 +1,7 @@
 // Walking the node tree: one callback per shape node with its object-to-world
 // matrix (the product of the transforms above it). Shared by prepare,
-// statistics and the writers. A node reachable from itself is an error.
+// statistics and the writers. A node reachable from itself, or a tree deeper
+// than max_node_depth, is an error.
 #pragma once
 
 #include "scene/error.h"
@@ -13,7 +14,10 @@ namespace rayform {
 
 namespace detail {
 template <class Fn>
-void walk_nodes(const Scene& scene, int index, const mat4& parent, std::vector<uint8_t>& on_path, Fn& fn) {
+void walk_nodes(const Scene& scene, int index, const mat4& parent, int depth, std::vector<uint8_t>& on_path, Fn& fn) {
+  if (depth > max_node_depth)
+    throw Error("scene: the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) +
+                " levels)");
   if (index < 0 || index >= int(scene.nodes.size()))
     throw Error("scene: node index " + std::to_string(index) + " out of range");
   if (on_path[index]) throw Error("scene: node " + std::to_string(index) + " is its own ancestor (cycle)");
@@ -21,7 +25,7 @@ void walk_nodes(const Scene& scene, int index, const mat4& parent, std::vector<u
   const Node& n = scene.nodes[index];
   mat4 m = n.kind == Node::Kind::group ? parent : parent * n.local;
   if (n.kind == Node::Kind::shape) fn(n, m);
-  for (int c : n.children) walk_nodes(scene, c, m, on_path, fn);
+  for (int c : n.children) walk_nodes(scene, c, m, depth + 1, on_path, fn);
   on_path[index] = 0;
 }
 }  // namespace detail
@@ -30,7 +34,7 @@ template <class Fn>
 void for_each_shape_node(const Scene& scene, Fn&& fn) {
   if (scene.root == invalid) return;
   std::vector<uint8_t> on_path(scene.nodes.size(), 0);
-  detail::walk_nodes(scene, scene.root, mat4(1.f), on_path, fn);
+  detail::walk_nodes(scene, scene.root, mat4(1.f), 1, on_path, fn);
 }
 
 }  // namespace rayform

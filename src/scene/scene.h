@@ -126,6 +126,12 @@ struct Mesh {
 
 enum class ShapeKind : uint8_t { sphere, plane, triangle, mesh };
 
+// Deepest node hierarchy a Scene may hold (root = depth 1). Readers refuse
+// deeper files with an error and every walk of the tree relies on it, so that
+// recursion stays far from the stack's limit (also under AddressSanitizer).
+// Real assets stay below a few dozen levels.
+inline constexpr int max_node_depth = 256;
+
 // Node of the scene graph. A group holds children; a transform holds children
 // under `local` (object to parent); a shape node references one primitive and
 // the material in force when it was declared.

@@ -305,6 +305,31 @@ TEST(CourseReader, NestedGroupsAndObjectCounts) {
   EXPECT_EQ(shapes[3]->material, 0);
 }
 
+// Nesting is limited to the Scene's max_node_depth: the deepest allowed
+// loads, one level more is an error at the Transform that crosses it, and a
+// hostile file nested 100000 deep fails the same way instead of exhausting the stack.
+std::string nested_transforms(int levels) {
+  std::string text = kCamera + "Group { numObjects 1\n";
+  for (int i = 0; i < levels; ++i) text += "Transform { Translate 1 0 0\n";
+  text += "Sphere { center 0 0 0 radius 1 }\n";
+  for (int i = 0; i < levels; ++i) text += "}\n";
+  return text + "}\n";
+}
+
+TEST(CourseReader, NestingDepthIsLimited) {
+  // Group (1) + transforms + sphere: max_node_depth - 2 transforms fill the Scene.
+  CourseScene cs = parse(nested_transforms(max_node_depth - 2));
+  std::vector<mat4> m = shape_matrices(cs.scene);
+  ASSERT_EQ(m.size(), 1u);
+  expect_point(m[0], vec3(0.f), vec3(float(max_node_depth - 2), 0.f, 0.f), "translations summed over every level");
+
+  std::string deeper = nested_transforms(max_node_depth - 1);
+  EXPECT_PARSE_ERROR(deeper, where(deeper, "Transform", max_node_depth - 1), "nested too deeply",
+                     "at most 256 levels");
+  std::string hostile = nested_transforms(100000);
+  EXPECT_PARSE_ERROR(hostile, where(hostile, "Transform", max_node_depth - 1), "nested too deeply");
+}
+
 TEST(CourseReader, MaterialIndexStaysInForceAcrossGroups) {
   CourseScene cs = parse(kCamera +
                          "Materials { numMaterials 3 Material { } Material { } Material { } }\n"

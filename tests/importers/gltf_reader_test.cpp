@@ -870,8 +870,22 @@ TEST_F(GltfFiles, VeryDeepHierarchyIsRefused) {
   for (int i = 0; i < 5000; ++i) nodes += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
   nodes += "{\"mesh\": 0}]";
   std::string j = replace_all(q.json(), R"("nodes": [{"mesh": 0 }])", nodes);
-  EXPECT_NE(error("deep.gltf", j).find("the node hierarchy is deeper than 1000 levels"), std::string::npos)
+  EXPECT_NE(error("deep.gltf", j).find("nodes[253].children[0]: the node hierarchy is too deep (a scene holds at most 256 levels)"),
+            std::string::npos)
       << error("deep.gltf", j);
+}
+
+// The deepest hierarchy a Scene holds loads: root group, 254 glTF levels, shapes.
+TEST_F(GltfFiles, DeepestAllowedHierarchyLoads) {
+  Quad q;
+  std::string nodes = "\"nodes\": [";
+  for (int i = 0; i < max_node_depth - 3; ++i) nodes += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
+  nodes += "{\"mesh\": 0}]";
+  std::string j = replace_all(q.json(), R"("nodes": [{"mesh": 0 }])", nodes);
+  Scene s = load("deepest.gltf", j);
+  int shapes = 0;
+  for_each_shape_node(s, [&](const Node&, const mat4&) { ++shapes; });
+  EXPECT_EQ(shapes, 1);
 }
 
 TEST_F(GltfFiles, NonFinitePositions) {
