@@ -1,6 +1,7 @@
 // Whole renders through the public pipeline (prepare_scene + render): the
 // course scene scene06_bunny_1k at 200x200 and the 1M-triangle bumpy torus at
-// 1920x1080, with every hardware thread (threads:0) and with one.
+// 1920x1080, with one thread and with two (the scaling goal: 2 threads
+// at least 1.8x faster than 1; scripts/bench reports the ratio).
 // Wall-clock time per render (prepare excluded, reported as prepare_ms).
 // Counters: ours = ms per render, Mrays_per_s = camera rays per second.
 #include "bench_meshes.h"
@@ -74,7 +75,7 @@ void bm_render(benchmark::State& state, RenderCase c, int threads) {
 
 int main(int argc, char** argv) {
   for (const RenderCase& c : {RenderCase{"scene06_bunny_1k", 200, 200}, RenderCase{"torus1M", 1920, 1080}})
-    for (int threads : {0, 1}) {
+    for (int threads : {1, 2}) {
       std::string name = "render/" + c.name + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
                          "/threads:" + std::to_string(threads);
       benchmark::RegisterBenchmark(name.c_str(), bm_render, c, threads)

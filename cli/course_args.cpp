@@ -11,7 +11,7 @@ namespace {
 
 const std::set<std::string> course_flags = {"-input", "-size", "-output", "-depth", "-normals", "-dialect",
                                             "-bounces", "-shadows", "-threads", "-quiet", "-albedo",
-                                            "-jitter", "-filter", "-spp", "-stats"};
+                                            "-jitter", "-filter", "-spp", "-stats", "-generic"};
 
 struct Args {
   const std::vector<std::string>& v;
@@ -91,6 +91,7 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
       if (job.threads < 0) throw UsageError("-threads expects a number >= 0");
     } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
     else if (f == "-stats") job.stats = true;
+    else if (f == "-generic") job.generic = true;
     else throw UsageError("unknown option '" + f + "'");
   }
   if (!has_input) throw UsageError("missing -input SCENE");

@@ -1,7 +1,7 @@
 // The course's own command line, verbatim: single-dash flags in any order,
 //   -input F.txt -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
 //   [-dialect 2012|2019] [-bounces N] [-shadows] [-jitter] [-filter]
-// (plus rayform's -threads N, -spp N, -stats and -quiet). Unknown flags are errors.
+// (plus rayform's -threads N, -spp N, -stats, -generic and -quiet). Unknown flags are errors.
 // The 2012 assignment-5 anti-aliasing flags map onto rayform's sampling:
 // -jitter = 16 jittered samples per pixel, -filter = the tent filter.
 #pragma once

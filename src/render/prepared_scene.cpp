@@ -116,6 +116,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     const Material& m = p.materials[i];
     if (m.specular != vec3(0.f)) f.specular = true;
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
+    if (!m.double_sided) f.single_sided = true;
     int t = m.diffuse_texture;
     if (t >= 0 && t < int(scene.textures.size())) {
       f.textures = true;

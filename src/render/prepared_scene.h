@@ -35,6 +35,7 @@ struct SceneFeatures {
   bool planes = false;         // unbounded planes, tested outside the BVH
   bool cube_map = false;       // background from a cube map
   bool alpha_cutout = false;   // some material has an alpha cut-out
+  bool single_sided = false;   // some material is single-sided (back faces culled)
   bool vertex_colors = false;
   bool falloff = false;        // some point light attenuates with distance
 };

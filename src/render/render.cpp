@@ -22,7 +22,7 @@ namespace {
 // its per-ray work skips those tests. Every switch only removes work whose
 // contribution is exactly zero for such scenes, so both paths give the same
 // image (checked by tests).
-template <bool Textures, bool Specular, bool Cutout>
+template <bool Textures, bool Specular, bool Skips>
 struct Tracer {
   const PreparedScene& p;
   const RenderOptions& o;
@@ -37,14 +37,21 @@ struct Tracer {
     else return vec4(m.diffuse * sp.color, 1.f);
   }
 
-  // Closest hit that is not a cut-out hole (alpha below the material's cutoff).
+  // Closest hit that is neither a cut-out hole (alpha below the material's
+  // cutoff) nor the back face of a single-sided material: those the ray passes.
   bool closest(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
     for (;;) {
       if (!intersect_scene(p, ray, hit)) return false;
       *sp = surface_point(p, ray, *hit);
       const Material& m = p.materials[sp->material];
+      if constexpr (Skips) {
+        if (!m.double_sided && glm::dot(ray.direction, sp->geometric_normal) > 0.f) {
+          ray.tmin = next_float_up(hit->t);
+          continue;
+        }
+      }
       *k = albedo(m, *sp);
-      if constexpr (Cutout) {
+      if constexpr (Skips) {
         if (m.alpha_cutoff >= 0.f && k->a < m.alpha_cutoff) {
           ray.tmin = next_float_up(hit->t);
           continue;
@@ -119,12 +126,12 @@ struct PixelOut {
   vec3 albedo{0.f};
 };
 
-template <bool Textures, bool Specular, bool Cutout>
+template <bool Textures, bool Specular, bool Skips>
 void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res) {
   const Scene& s = *p.scene;
   const int W = o.width, H = o.height;
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], W, H);
-  const Tracer<Textures, Specular, Cutout> tracer{p, o, s};
+  const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
   const int ts = std::max(1, o.tile_size);
   const int tiles_x = (W + ts - 1) / ts, tiles_y = (H + ts - 1) / ts, tiles = tiles_x * tiles_y;
@@ -198,12 +205,12 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
 }
 
 struct PathChoice {
-  bool textures, specular, cutout;
+  bool textures, specular, skips;  // skips: cut-outs or single-sided materials
 };
 
 PathChoice choose_path(const PreparedScene& p, const RenderOptions& o) {
   if (o.generic) return {true, true, true};
-  return {p.features.textures, p.features.specular, p.features.alpha_cutout};
+  return {p.features.textures, p.features.specular, p.features.alpha_cutout || p.features.single_sided};
 }
 
 }  // namespace
@@ -211,11 +218,11 @@ PathChoice choose_path(const PreparedScene& p, const RenderOptions& o) {
 std::string render_path_name(const PreparedScene& p, const RenderOptions& o) {
   if (o.generic) return "generic";
   PathChoice c = choose_path(p, o);
-  if (c.textures && c.specular && c.cutout) return "generic";
+  if (c.textures && c.specular && c.skips) return "generic";
   std::string name = "specialised (without";
   if (!c.textures) name += " textures";
   if (!c.specular) name += " specular";
-  if (!c.cutout) name += " cut-outs";
+  if (!c.skips) name += " cut-outs/culling";
   return name + ")";
 }
 
@@ -239,7 +246,7 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
 
   PathChoice c = choose_path(p, o);
   // Dispatch to one of the eight compiled paths.
-  int key = (c.textures ? 4 : 0) | (c.specular ? 2 : 0) | (c.cutout ? 1 : 0);
+  int key = (c.textures ? 4 : 0) | (c.specular ? 2 : 0) | (c.skips ? 1 : 0);
   switch (key) {
     case 0: render_tiles<false, false, false>(p, o, res); break;
     case 1: render_tiles<false, false, true>(p, o, res); break;

@@ -90,6 +90,8 @@ struct Material {
   bool texture_modulates = false; // true: K = diffuse * texel (assets); false: K = texel (course)
   UvTransform uv_transform;
   float alpha_cutoff = -1.f;      // < 0: opaque; else texel alpha below it is a hole
+  // false: back faces (seen against the winding's normal) are culled for
+  // camera and secondary rays, as glTF's doubleSided=false; shadows still fall.
   bool double_sided = true;
   float refraction_index = 0.f;   // 0: opaque
   int bump_texture = invalid;     // parsed and kept (course 2019 `bump`)

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
+#include <cstring>
 #include <random>
 
 namespace rayform {
@@ -260,11 +263,29 @@ TEST(Bvh, TreeIsWellFormed) {
   EXPECT_TRUE(build_bvh(std::vector<Bounds3>{}).nodes.empty());
 }
 
+// Byte images of the structure (nodes and packets have no padding bytes that
+// the builder leaves unwritten: the static_asserts fix their layout).
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
 TEST(Bvh, BuildIsDeterministic) {
-  SoupMesh m = random_soup(1000, 1.f, 10);
+  // Large enough for the parallel builder to split work between threads.
+  SoupMesh m = random_soup(200000, 1.f, 10);
   MeshAccel a = build_mesh_accel(m.positions, m.indices), b = build_mesh_accel(m.positions, m.indices);
-  EXPECT_EQ(a.bvh.nodes.size(), b.bvh.nodes.size());
+  MeshAccel one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = build_mesh_accel(m.positions, m.indices);
+  }
+  ASSERT_GT(a.bvh.nodes.size(), 1000u);
+  EXPECT_TRUE(same_bytes(a.bvh.nodes, b.bvh.nodes)) << "the same input must give the same nodes";
+  EXPECT_TRUE(same_bytes(a.packets, b.packets));
   EXPECT_EQ(a.triangles, b.triangles) << "the same input must give the same leaf order";
+  EXPECT_TRUE(same_bytes(a.bvh.nodes, one.bvh.nodes)) << "one thread must build what several build";
+  EXPECT_TRUE(same_bytes(a.packets, one.packets));
+  EXPECT_EQ(a.triangles, one.triangles);
   Bvh x = build_bvh(std::vector<Bounds3>(1, Bounds3{vec3(0.f), vec3(1.f)}));
   EXPECT_EQ(x.nodes.size(), 1u);
   EXPECT_EQ(x.primitives, std::vector<uint32_t>{0});
