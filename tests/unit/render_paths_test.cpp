@@ -2,7 +2,8 @@
 // of the generic one: colour, depth, normals and albedo, bit for bit, for the
 // course scenes of both dialects (with and without shadows and bounces), our
 // own textured scenes and a scene with cut-outs and single-sided materials.
-// Also: single-sided materials cull back faces for camera and secondary rays.
+// Also: single-sided materials cull back faces for camera and secondary rays,
+// and the image does not depend on the thread count or the tile size.
 #include "render/prepared_scene.h"
 #include "render/render.h"
 #include "scene/procedural_mesh.h"
@@ -80,6 +81,25 @@ TEST(RenderPaths, OwnTexturedScenesSpecialisedEqualsGeneric) {
     o.shadows = true;
     o.spp = 4;
     check_paths(l.scene, o, name);
+  }
+}
+
+// Each pixel is traced on its own: thread count and tile size do not change a bit.
+TEST(RenderPaths, ImageDoesNotDependOnThreadsOrTiles) {
+  LoadedScene l = load_scene((test::source_dir() / "scenes" / "tests" / "textures_transformed.txt").string());
+  PreparedScene p = prepare_scene(l.scene);
+  RenderOptions o;
+  o.width = 61;  // not a multiple of the tile size
+  o.height = 47;
+  o.shadows = true;
+  o.spp = 4;
+  o.depth = o.normals = o.albedo = true;
+  o.threads = 1;
+  RenderResult one = render(p, o);
+  for (auto [threads, tile] : {std::pair{2, 16}, std::pair{0, 16}, std::pair{2, 7}, std::pair{3, 64}}) {
+    o.threads = threads;
+    o.tile_size = tile;
+    expect_identical(one, render(p, o), "threads " + std::to_string(threads) + ", tile " + std::to_string(tile));
   }
 }
 
