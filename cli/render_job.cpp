@@ -77,13 +77,13 @@ void run_render_job(const RenderJob& job) {
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   // Asset files often carry neither camera nor light (a course scene always has
   // a camera, and without lights its ambient light is white).
-  if (loaded.format != SceneFormat::course_txt) {
-    if (add_default_camera(loaded.scene))
-      std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
-    if (add_headlight(loaded.scene))
-      std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
-  }
+  // The head-light follows the camera rendered, as the overrides left it.
+  const bool asset = loaded.format != SceneFormat::course_txt;
+  if (asset && add_default_camera(loaded.scene))
+    std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
   apply_camera_overrides(job, loaded.scene);
+  if (asset && add_headlight(loaded.scene, job.camera))
+    std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
   auto t_prepare = clock::now();

@@ -38,13 +38,14 @@ bool add_default_camera(Scene& scene) {
   return true;
 }
 
-bool add_headlight(Scene& scene) {
+bool add_headlight(Scene& scene, int camera) {
   if (!scene.lights.empty()) return false;
   Light l;
   l.name = "headlight";
   l.kind = Light::Kind::directional;
   l.color = vec3(1.f);
-  l.direction = scene.cameras.empty() ? vec3(0.f, 0.f, -1.f) : glm::normalize(scene.cameras[0].direction);
+  if (camera < 0 || camera >= int(scene.cameras.size())) camera = 0;
+  l.direction = scene.cameras.empty() ? vec3(0.f, 0.f, -1.f) : glm::normalize(scene.cameras[size_t(camera)].direction);
   if (!is_finite(l.direction)) l.direction = vec3(0.f, 0.f, -1.f);
   scene.lights.push_back(l);
   return true;

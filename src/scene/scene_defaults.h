@@ -19,9 +19,10 @@ inline constexpr float default_camera_fov_deg = 40.f;
 bool add_default_camera(Scene& scene);
 
 // When the scene has no light, adds a white directional "headlight" shining
-// along the first camera's view direction (down -z without a camera), so
-// that every surface facing the camera is lit. Returns whether a light was
-// added. Call add_default_camera first.
-bool add_headlight(Scene& scene);
+// along the view direction of camera `camera` (the first when out of range;
+// down -z without a camera), so that every surface facing that camera is lit.
+// Returns whether a light was added. Call add_default_camera, and apply any
+// change to the camera, first.
+bool add_headlight(Scene& scene, int camera = 0);
 
 }  // namespace rayform

@@ -114,6 +114,17 @@ TEST(SceneDefaults, HeadlightShinesAlongTheCamera) {
   Scene bare = box_scene({-1, -1, -1}, {1, 1, 1});
   ASSERT_TRUE(add_headlight(bare));
   EXPECT_EQ(bare.lights[0].direction, vec3(0, 0, -1));
+  // It follows the camera asked for (the one rendered), the first when out of range.
+  Scene two = box_scene({-1, -1, -1}, {1, 1, 1});
+  two.cameras.push_back(c);
+  Camera side;
+  side.direction = vec3(3, 0, 0);
+  two.cameras.push_back(side);
+  Scene two_again = two;
+  ASSERT_TRUE(add_headlight(two, 1));
+  EXPECT_EQ(two.lights[0].direction, vec3(1, 0, 0));
+  ASSERT_TRUE(add_headlight(two_again, 5));
+  EXPECT_EQ(two_again.lights[0].direction, vec3(0, -1, 0));
 }
 
 TEST(SceneDefaults, EmptySceneGetsACameraAtZ5) {
