@@ -28,7 +28,7 @@ status=0
 exact=()   # oiiotool arguments: own 200x200 vs decimated, exact
 parity=()  # reference vs decimated, by the parity rule
 n=0
-while read -r name size _ dmin dmax; do
+while read -r name _ _ dmin dmax; do
   [ -n "$name" ] || continue
   out="$tmp/$name"; mkdir -p "$out"
   for s in 200x200 399x200 200x399 399x399; do

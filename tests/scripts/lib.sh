@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by the script tests: locations and the skip rule (exit 77 = skipped).
 set -uo pipefail
 : "${RAYFORM_BIN:?RAYFORM_BIN must name the rayform binary}"
@@ -10,4 +11,25 @@ require_shared() {
     echo "SKIPPED: third-party data not found at $RAYFORM_SHARED (set RAYFORM_SHARED)"; exit 77
   fi
   command -v idiff >/dev/null || { echo "FAIL: idiff not found (apt-get install openimageio-tools)"; exit 1; }
+}
+
+# Compares the pictures queued in the array `compare` (oiiotool arguments:
+# `--echo "== LABEL" GOLDEN NEW --diff` per picture) by the course-parity rule
+# (at most 0.5 % of pixels over 2/255), in one oiiotool process; prints a
+# PASS/FAIL line per picture, the details of failures and a summary line.
+# Arguments: the number of pictures queued, the failures counted before, a
+# scratch folder. Returns non-zero when anything failed.
+compare_with_goldens() {
+  local n=$1 failn=$2 tmp=$3 rc bad
+  [ "$n" -gt 0 ] || { echo "FAIL: nothing to compare"; return 1; }
+  # shellcheck disable=SC2154  # compare: the caller's array
+  oiiotool --fail 0.0079 --failpercent 0.5 "${compare[@]}" >"$tmp/diff.log" 2>&1; rc=$?
+  awk '/^== /{label=substr($0, 4)} /^PASS/{print "PASS " label} /WARNING/{print "PASS (warning) " label}
+       /FAILURE/{print "FAIL " label}' "$tmp/diff.log"
+  bad=$(grep -c 'FAILURE' "$tmp/diff.log")
+  if [ "$bad" -ne 0 ] || [ $rc -ne 0 ]; then
+    echo "details:"; sed 's/^/    /' "$tmp/diff.log"; failn=$((failn + bad))
+  fi
+  echo "$((n - bad)) of $n pictures match their golden picture"
+  [ "$failn" -eq 0 ] && [ "$rc" -eq 0 ]
 }

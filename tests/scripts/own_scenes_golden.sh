@@ -39,15 +39,4 @@ while read -r name scene size dmin dmax flags; do
   done
 done <"$golden/MANIFEST.txt"
 [ $update -eq 1 ] && exit 0
-[ $n -gt 0 ] || { echo "FAIL: nothing to compare"; exit 1; }
-
-oiiotool --fail 0.0079 --failpercent 0.5 "${compare[@]}" >"$tmp/diff.log" 2>&1; rc=$?
-# One line per picture: PASS/FAIL and its label; the details of failures.
-awk '/^== /{label=substr($0, 4)} /^PASS/{print "PASS " label} /WARNING/{print "PASS (warning) " label}
-     /FAILURE/{print "FAIL " label}' "$tmp/diff.log"
-bad=$(grep -c 'FAILURE' "$tmp/diff.log")
-if [ "$bad" -ne 0 ] || [ $rc -ne 0 ]; then
-  echo "details:"; sed 's/^/    /' "$tmp/diff.log"; failn=$((failn + bad))
-fi
-echo "$((n - bad)) of $n pictures match their golden picture"
-[ $failn -eq 0 ] && [ $rc -eq 0 ]
+compare_with_goldens "$n" "$failn" "$tmp"
