@@ -240,7 +240,7 @@ class CourseBuilder {
   void write_materials(std::ostringstream& o) {
     size_t n = s_.materials.size() + (need_default_ ? 1 : 0);
     o << "Materials {\n    numMaterials " << n << "\n";
-    std::set<std::string> emissive, cutouts, modulated, vertex_colored, bumps_dropped, single_sided;
+    std::set<std::string> emissive, cutouts, modulated, vertex_colored, bumps_dropped, single_sided, two_sided;
     for (const Material& m : s_.materials) {
       o << "    PhongMaterial {\n"
         << "        diffuseColor " << v3(m.diffuse) << "\n"
@@ -264,6 +264,7 @@ class CourseBuilder {
       if (m.emission != vec3(0.f)) emissive.insert(m.name);
       if (m.alpha_cutoff >= 0.f) cutouts.insert(m.name);
       if (!m.double_sided) single_sided.insert(m.name);
+      if (m.two_sided_lighting && m.refraction_index == 0.f) two_sided.insert(m.name);
     }
     if (need_default_) o << "    PhongMaterial {\n        diffuseColor 1 1 1\n    }\n";
     o << "}\n\n";
@@ -274,6 +275,9 @@ class CourseBuilder {
     };
     if (!emissive.empty()) note("materials " + list(emissive) + ": emission dropped (the course has none)");
     if (!cutouts.empty()) note("materials " + list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
+    if (!two_sided.empty())
+      note("materials " + list(two_sided) + ": back faces are shaded with their normals as given, not reversed " +
+           "towards the viewer (the course format's convention)");
     if (!single_sided.empty())
       note("materials " + list(single_sided) + ": single-sided becomes double-sided (the course has no such flag)");
     if (!modulated.empty())

@@ -859,6 +859,7 @@ class GltfSceneBuilder {
       warn(mw + ": unknown alphaMode '" + gm.alphaMode + "'; drawn OPAQUE");
     }
     m.double_sided = gm.doubleSided;
+    m.two_sided_lighting = gm.doubleSided;  // the specification reverses back-face normals
     if (pbr.metallicRoughnessTexture.index >= 0) unused_textures_.insert("metallicRoughnessTexture");
     if (gm.normalTexture.index >= 0) unused_textures_.insert("normalTexture");
     if (gm.occlusionTexture.index >= 0) unused_textures_.insert("occlusionTexture");

@@ -674,6 +674,7 @@ class GltfBuilder {
                                       {"specular", vec_value(m.specular)},
                                       {"shininess", num(m.shininess)}});
     ex["texture_modulates"] = Value(m.texture_modulates);
+    ex["two_sided_lighting"] = Value(m.two_sided_lighting);
     if (m.refraction_index != 0.f) ex["refraction_index"] = num(m.refraction_index);
     if (m.emission != vec3(0.f)) ex["emission"] = vec_value(m.emission);
     if (m.alpha_cutoff >= 0.f) ex["alpha_cutoff"] = num(m.alpha_cutoff);
@@ -1077,6 +1078,7 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
       get_float(ph, "shininess", &m.shininess);
     }
     get_bool(*ex, "texture_modulates", &m.texture_modulates);
+    get_bool(*ex, "two_sided_lighting", &m.two_sided_lighting);
     get_float(*ex, "refraction_index", &m.refraction_index);
     if (!get_vec3(*ex, "emission", &m.emission)) m.emission = vec3(0.f);
     get_float(*ex, "alpha_cutoff", &m.alpha_cutoff);

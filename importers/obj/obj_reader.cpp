@@ -404,6 +404,7 @@ class ObjSceneBuilder {
       m.name = tm.name;
       m.texture_modulates = true;
       m.double_sided = true;
+      m.two_sided_lighting = true;  // OBJ has no culling: both sides are lit alike
       bool srgb = tm.diffuse_texopt.colorspace != "linear";
       m.diffuse_texture = texture(tm.diffuse_texname, dir, tm.name, "map_Kd", srgb, tm.diffuse_texopt.clamp);
       // Kd absent: with a map_Kd the texel is the colour (Kd = 1, as
@@ -453,6 +454,7 @@ class ObjSceneBuilder {
       m.name = "default";
       m.diffuse = vec3(default_grey);
       m.texture_modulates = true;
+      m.two_sided_lighting = true;
       scene_.materials.push_back(m);
       default_material_ = int(scene_.materials.size()) - 1;
     }

@@ -149,6 +149,7 @@ class ObjBuilder {
       o << "illum 2\n";
       if (m.alpha_cutoff >= 0.f) cutouts_.insert(m.name);
       if (!m.double_sided) single_sided_.insert(m.name);
+      if (!m.two_sided_lighting && m.refraction_index == 0.f) one_side_lit_.insert(m.name);
       if (!tex.empty()) {
         const Texture& t = scene_.textures[size_t(m.diffuse_texture)];
         o << "map_Kd";
@@ -385,6 +386,9 @@ class ObjBuilder {
     if (!cutouts_.empty()) note("materials " + list(cutouts_) + ": alpha cut-outs dropped");
     if (!single_sided_.empty())
       note("materials " + list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
+    if (!one_side_lit_.empty())
+      note("materials " + list(one_side_lit_) + ": back faces will be shaded with their normals reversed towards " +
+           "the viewer, as OBJ materials are (the source shades them with the normal as given)");
     if (!course_lookup_.empty())
       note("textures " + list(course_lookup_) + ": the course's texel centres (on whole numbers) are not expressible; "
            "OBJ readers sample half a texel off");
@@ -414,7 +418,8 @@ class ObjBuilder {
   size_t zero_normals_ = 0;
   int spheres_ = 0, planes_ = 0, sections_ = 0;
   float plane_half_ = 0.f;
-  std::set<std::string> replaced_, baked_, ns_zero_, cutouts_, single_sided_, course_lookup_, nearest_, mirror_;
+  std::set<std::string> replaced_, baked_, ns_zero_, cutouts_, single_sided_, one_side_lit_, course_lookup_, nearest_,
+      mirror_;
 };
 
 }  // namespace

@@ -57,6 +57,9 @@ struct Tracer {
           continue;
         }
       }
+      // Two-sided lighting: a back face is shaded as seen from its side.
+      if (m.two_sided_lighting && m.refraction_index == 0.f && glm::dot(ray.direction, sp->geometric_normal) > 0.f)
+        sp->normal = -sp->normal;
       return true;
     }
   }

@@ -93,6 +93,11 @@ struct Material {
   // false: back faces (seen against the winding's normal) are culled for
   // camera and secondary rays, as glTF's doubleSided=false; shadows still fall.
   bool double_sided = true;
+  // true: a back face (seen against the winding's normal) is shaded with its
+  // normal reversed, towards the viewer (glTF doubleSided, OBJ); false: with
+  // the normal as given (the course format, whose reference does not flip).
+  // Refractive materials keep their normals: inside and outside matter there.
+  bool two_sided_lighting = false;
   float refraction_index = 0.f;   // 0: opaque
   int bump_texture = invalid;     // parsed and kept (course 2019 `bump`)
 };

@@ -253,6 +253,7 @@ TEST(GltfReader, BoxTexturedGltfGlbAndEmbeddedAreIdentical) {
   EXPECT_EQ(mat.diffuse, vec3(1.f));
   EXPECT_EQ(mat.specular, vec3(0.f));  // metallic 0, roughness 1
   EXPECT_FALSE(mat.double_sided);
+  EXPECT_FALSE(mat.two_sided_lighting);
   EXPECT_TRUE(gltf.cameras.empty());
   // root group -> node 0 (matrix: -90 degrees about x) -> node 1 -> shape.
   EXPECT_EQ(gltf.nodes.size(), 4u);
@@ -754,6 +755,7 @@ TEST_F(GltfFiles, MaterialConversion) {
   EXPECT_NEAR(m.shininess, 7.5f, 1e-5f);
   EXPECT_EQ(m.emission, vec3(0.2f, 0.4f, 0.6f));
   EXPECT_TRUE(m.double_sided);
+  EXPECT_TRUE(m.two_sided_lighting);  // the specification reverses back-face normals
   EXPECT_NEAR(m.alpha_cutoff, 0.3f / 0.5f, 1e-6f);  // factor alpha folded into the threshold
   EXPECT_TRUE(m.texture_modulates);
   ASSERT_EQ(m.diffuse_texture, 0);

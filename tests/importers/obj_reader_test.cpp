@@ -161,6 +161,12 @@ TEST(ObjReader, CornellBoxKeepsPerFaceMaterials) {
   ASSERT_EQ(bm.face_materials.size(), bm.triangle_count());
   std::set<int> used(bm.face_materials.begin(), bm.face_materials.end());
   EXPECT_EQ(used, (std::set<int>{base, green, red}));
+  // Its README: normals made so that the box is seen from inside. OBJ has no
+  // culling, so every material is double-sided with two-sided lighting.
+  for (const Material& m : s.materials) {
+    EXPECT_TRUE(m.double_sided) << m.name;
+    EXPECT_TRUE(m.two_sided_lighting) << m.name;
+  }
 }
 
 TEST(ObjReader, DuckTextureWithoutKdIsTheColour) {

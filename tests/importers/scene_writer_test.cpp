@@ -68,6 +68,7 @@ void expect_same_material(const Material& a, const Material& b, const std::strin
   EXPECT_EQ(a.diffuse_texture == invalid, b.diffuse_texture == invalid) << what;
   EXPECT_EQ(a.emission, b.emission) << what;
   EXPECT_EQ(a.refraction_index, b.refraction_index) << what;
+  EXPECT_EQ(a.two_sided_lighting, b.two_sided_lighting) << what;
 }
 
 // Mesh a against mesh b, triangle by triangle (vertex order may differ).

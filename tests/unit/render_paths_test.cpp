@@ -177,5 +177,33 @@ TEST(RenderPaths, SingleSidedMaterialsCullBackFaces) {
   check_paths(two_quads(false), o, "single-sided quads");
 }
 
+// Two-sided lighting: a back face is shaded with its normal reversed (glTF
+// doubleSided, OBJ); without it (course scenes) with the normal as given.
+TEST(RenderPaths, TwoSidedLightingReversesBackFaceNormals) {
+  RenderOptions o;
+  o.width = o.height = 32;
+  o.normals = true;
+  const int centre = 16 * 32 + 16;
+  for (bool two_sided : {false, true}) {
+    Scene s = two_quads(true);  // we see the near quad's back; the light shines from the camera
+    s.materials[0].two_sided_lighting = two_sided;
+    PreparedScene p = prepare_scene(s);
+    RenderResult r = render(p, o);
+    const float* c = &r.color.pixels[3 * centre];
+    if (two_sided) {
+      EXPECT_GT(c[0], 0.99f) << "lit as its front: cos ~ 1 times the red diffuse colour";
+      EXPECT_GT(r.normals[centre].z, 0.99f) << "the normal faces the viewer";
+    } else {
+      EXPECT_EQ(c[0], 0.f) << "the given normal faces away from the light";
+      EXPECT_LT(r.normals[centre].z, -0.99f);
+    }
+    check_paths(s, o, two_sided ? "two-sided lighting" : "one-sided lighting");
+    // Refractive materials keep their normals (inside and outside matter).
+    s.materials[0].refraction_index = 1.5f;
+    PreparedScene pr = prepare_scene(s);
+    EXPECT_LT(render(pr, o).normals[centre].z, -0.99f);
+  }
+}
+
 }  // namespace
 }  // namespace rayform
