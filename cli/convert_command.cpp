@@ -3,6 +3,7 @@
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
 #include "scene/error.h"
+#include "scene/file_extension.h"
 #include "scene/scene_stats.h"
 #include "scene_writer.h"
 
@@ -47,8 +48,7 @@ void run_convert(const ConvertArgs& a) {
   o.dialect = dialect_from_string(a.dialect);
   if (!o.dialect && loaded.format == SceneFormat::course_txt) o.dialect = loaded.dialect;
   std::vector<std::string> messages;
-  std::string ext = fs::path(a.output).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(a.output);
   if (o.embed && ext != ".gltf")
     messages.push_back(fs::path(a.output).filename().string() + ": --embed applies to .gltf output only" +
                        (ext == ".glb" ? " (a .glb always holds everything)" : ""));

@@ -7,6 +7,7 @@
 #include "render/render.h"
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
+#include "scene_writer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -131,14 +132,9 @@ void run_render_job(const RenderJob& job) {
   if (!job.normals.empty())
     outputs.emplace_back(job.normals, normals_image(result, course_2012 ? NormalStyle::absolute : NormalStyle::offset));
   if (!job.albedo.empty()) outputs.emplace_back(job.albedo, std::move(result.albedo));
-  std::vector<std::string> temporaries;
-  try {
-    for (const auto& [path, image] : outputs) temporaries.push_back(write_image_temporary(path, image));
-  } catch (...) {
-    for (const std::string& t : temporaries) discard_temporary(t);
-    throw;
-  }
-  for (size_t i = 0; i < outputs.size(); ++i) commit_temporary(temporaries[i], outputs[i].first);
+  OutputFiles files(job.output);
+  for (const auto& [path, image] : outputs) files.add_written(path, write_image_temporary(path, image));
+  files.commit();
 }
 
 }  // namespace rayform::cli

@@ -1,15 +1,12 @@
 #include "scene_io.h"
 
 #include "scene/error.h"
-
-#include <algorithm>
-#include <filesystem>
+#include "scene/file_extension.h"
 
 namespace rayform {
 
 SceneFormat scene_format_from_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".txt") return SceneFormat::course_txt;
   if (ext == ".obj") return SceneFormat::obj;
   if (ext == ".gltf" || ext == ".glb") return SceneFormat::gltf;

@@ -5,6 +5,7 @@
 #include "image/image.h"
 #include "obj/obj_writer.h"
 #include "scene/error.h"
+#include "scene/file_extension.h"
 #include "scene/node_walk.h"
 #include "scene/scene_stats.h"
 #include "scene_io.h"
@@ -25,16 +26,6 @@
 
 namespace rayform {
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
 
 // ---- entry point ------------------------------------------------------------------
 
@@ -433,6 +424,7 @@ void OutputFiles::add(const std::string& path, const std::string& text) {
 }
 
 void OutputFiles::add_written(const std::string& path, const std::string& temp_path) {
+  temps_.push_back(temp_path);
   for (Entry& e : entries_)
     if (e.path == path) {
       e.bytes.clear();

@@ -141,7 +141,8 @@ class OutputFiles {
   void add(const std::string& path, std::vector<uint8_t> bytes);
   void add(const std::string& path, const std::string& text);
   // A file already written at `temp_path` (on the same file system) that
-  // becomes `path` at commit.
+  // becomes `path` at commit; removed with the other temporaries when the
+  // set is not committed.
   void add_written(const std::string& path, const std::string& temp_path);
   bool has(const std::string& path) const;
   // A fresh temporary folder beside the main file, removed by the destructor.

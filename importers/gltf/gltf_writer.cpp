@@ -1,6 +1,7 @@
 #include "gltf/gltf_writer.h"
 
 #include "scene/error.h"
+#include "scene/file_extension.h"
 #include "scene/node_walk.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
@@ -584,8 +585,7 @@ class GltfBuilder {
       return -1;
     }
     if (!t.path.empty()) {
-      std::string src = fs::path(t.path).extension().string();
-      std::transform(src.begin(), src.end(), src.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+      const std::string src = lower_extension(t.path);
       if (src != ".png" && src != ".jpg" && src != ".jpeg") converted_.insert(t.name);
     }
     tinygltf::Image img;

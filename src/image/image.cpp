@@ -3,23 +3,13 @@
 #include "image/oiio_plugin.h"
 #include "image/stb_codec.h"
 #include "scene/error.h"
+#include "scene/file_extension.h"
 
-#include <algorithm>
 #include <filesystem>
 #include <unistd.h>
 
 namespace rayform {
 namespace fs = std::filesystem;
-namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
-
 Image read_image(const std::string& path) {
   if (!fs::exists(path)) throw Error(path + ": cannot read image: no such file");
   Image img;
