@@ -8,6 +8,7 @@
 #include "scene/node_walk.h"
 #include "scene/scene_stats.h"
 #include "scene_io.h"
+#include "test_importers.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -22,11 +23,8 @@ namespace rayform {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path asset(const std::string& rel) { return test::shared_dir() / "assets" / rel; }
-
-bool any_contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::any_of(v.begin(), v.end(), [&](const std::string& w) { return w.find(s) != std::string::npos; });
-}
+using test::any_contains;
+using test::asset;
 
 // ---- building glTF files ----------------------------------------------------------
 
@@ -66,6 +64,13 @@ std::string data_uri(const Bin& b) { return "data:application/octet-stream;base6
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
   return s;
+}
+
+// `j` with the placeholders of its one buffer filled in from `bin`: @N@ the
+// byteLength, @BUF@ the data URI.
+std::string with_buffer(std::string j, const Bin& bin) {
+  j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
+  return replace_all(j, "@BUF@", data_uri(bin));
 }
 
 // A GLB container: JSON chunk (space padded) and, if given, a BIN chunk.
@@ -156,8 +161,7 @@ struct Quad {
     j = replace_all(j, "@P@", std::to_string(pos));
     j = replace_all(j, "@U@", std::to_string(uv));
     j = replace_all(j, "@I@", std::to_string(idx));
-    j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
-    j = replace_all(j, "@BUF@", data_uri(bin));
+    j = with_buffer(j, bin);
     j = replace_all(j, "@PRIM@", primitive_extra);
     j = replace_all(j, "@NODE@", node_extra);
     j = replace_all(j, "@TOP@", top_extra);
@@ -609,8 +613,7 @@ TEST_F(GltfFiles, SparseAccessors) {
   j = replace_all(j, "@SV@", std::to_string(sval));
   j = replace_all(j, "@ZI@", std::to_string(zidx));
   j = replace_all(j, "@ZV@", std::to_string(zval));
-  j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
-  j = replace_all(replace_all(j, "@BUF@", data_uri(bin)), "@PNG@", png_2x2);
+  j = replace_all(with_buffer(j, bin), "@PNG@", png_2x2);
   Scene s = load("sparse.gltf", j);
   const Mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.positions, (std::vector<vec3>{{0, 0, 0}, {5, 0, 0}, {0, 1, 0}, {5, 5, 0}}));
@@ -635,8 +638,7 @@ TEST_F(GltfFiles, NormalizedIntegerUvsAndColours) {
   j = replace_all(j, "@P@", std::to_string(pos));
   j = replace_all(j, "@U@", std::to_string(uv));
   j = replace_all(j, "@C@", std::to_string(col));
-  j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
-  j = replace_all(j, "@BUF@", data_uri(bin));
+  j = with_buffer(j, bin);
   Scene s = load("norm.gltf", j);
   const Mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.uvs, (std::vector<vec2>{{0, 0}, {1, 0}, {0, 1}}));
@@ -962,8 +964,7 @@ TEST_F(GltfFiles, BadSparseAccessors) {
   j = replace_all(j, "@B@", std::to_string(base));
   j = replace_all(j, "@SI@", std::to_string(sidx));
   j = replace_all(j, "@SV@", std::to_string(sval));
-  j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
-  j = replace_all(j, "@BUF@", data_uri(bin));
+  j = with_buffer(j, bin);
   EXPECT_NE(error("sparse1.gltf", replace_all(j, "@SC@", "1"))
                 .find("(accessors[0]).sparse.indices[0]: 7 is past the accessor's 3 elements"),
             std::string::npos)

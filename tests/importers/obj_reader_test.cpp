@@ -5,6 +5,7 @@
 #include "scene/node_walk.h"
 #include "scene/scene_stats.h"
 #include "scene_io.h"
+#include "test_importers.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -21,15 +22,12 @@ namespace rayform {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path asset(const std::string& rel) { return test::shared_dir() / "assets" / rel; }
+using test::any_contains;
+using test::asset;
 
 void write_file(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p, std::ios::binary) << text;
-}
-
-bool any_contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::any_of(v.begin(), v.end(), [&](const std::string& w) { return w.find(s) != std::string::npos; });
 }
 
 std::string error_of(const std::string& path, const ObjReadOptions& o = {}) {

@@ -3,6 +3,7 @@
 #include "scene/scene_defaults.h"
 #include "scene/scene_stats.h"
 #include "test_paths.h"
+#include "test_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -21,10 +22,7 @@ Scene box_scene(vec3 lo, vec3 hi, const mat4& m = mat4(1.f)) {
     mesh.positions.push_back(vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z));
   mesh.indices = {0, 1, 2, 1, 3, 2, 4, 5, 6, 5, 7, 6};
   s.meshes.push_back(mesh);
-  Node shape;
-  shape.kind = Node::Kind::shape;
-  shape.shape_kind = ShapeKind::mesh;
-  shape.shape = 0;
+  Node shape = test::shape_node(ShapeKind::mesh, 0);
   Node t;
   t.kind = Node::Kind::transform;
   t.local = m;

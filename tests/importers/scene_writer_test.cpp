@@ -9,7 +9,9 @@
 #include "scene/scene_stats.h"
 #include "scene_io.h"
 #include "scene_writer.h"
+#include "test_importers.h"
 #include "test_paths.h"
+#include "test_scenes.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -26,11 +28,8 @@ const char* kCourseScenes[] = {"scene01_plane", "scene02_cube",      "scene03_sp
                                "scene06_bunny_1k", "scene07_shine", "scene08_c",      "scene09_s"};
 
 fs::path course(const std::string& name) { return test::shared_dir() / "course" / "2012" / (name + ".txt"); }
-fs::path asset(const std::string& rel) { return test::shared_dir() / "assets" / rel; }
-
-bool any_contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::any_of(v.begin(), v.end(), [&](const std::string& w) { return w.find(s) != std::string::npos; });
-}
+using test::any_contains;
+using test::asset;
 
 std::string joined(const std::vector<std::string>& v) {
   std::string out;
@@ -390,23 +389,12 @@ Scene feature_scene() {
     s.nodes.push_back(std::move(n));
     return int(s.nodes.size()) - 1;
   };
-  Node quad;
-  quad.kind = Node::Kind::shape;
+  Node quad = test::shape_node(ShapeKind::mesh, 0, 0);
   quad.name = "quad";
-  quad.shape_kind = ShapeKind::mesh;
-  quad.shape = 0;
-  quad.material = 0;
-  Node sphere;
-  sphere.kind = Node::Kind::shape;
+  Node sphere = test::shape_node(ShapeKind::sphere, 0, 0);
   sphere.name = "sphere";
-  sphere.shape_kind = ShapeKind::sphere;
-  sphere.shape = 0;
-  sphere.material = 0;
-  Node tri;
-  tri.kind = Node::Kind::shape;
+  Node tri = test::shape_node(ShapeKind::triangle, 0);  // no material
   tri.name = "triangle";
-  tri.shape_kind = ShapeKind::triangle;
-  tri.shape = 0;  // no material
   // A shear: scale along x after a rotation, which no single glTF node holds.
   Node sheared;
   sheared.kind = Node::Kind::transform;

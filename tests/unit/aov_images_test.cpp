@@ -4,6 +4,7 @@
 // near black; background black in both. 2012 normals: (|x|, |y|, |z|) on
 // black; 2019: (n + 1) / 2 on 0.5 grey.
 #include "render/aov_images.h"
+#include "test_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -88,11 +89,7 @@ TEST(AovImages, RenderedSphereDepthAndNormal) {
   c.fov_deg = 30.f;
   s.cameras.push_back(c);
   s.spheres.push_back({vec3(0.f), 1.f});
-  Node n;
-  n.kind = Node::Kind::shape;
-  n.shape_kind = ShapeKind::sphere;
-  n.shape = 0;
-  s.nodes.push_back(n);
+  s.nodes.push_back(test::shape_node(ShapeKind::sphere, 0));
   s.root = 0;
   PreparedScene p = prepare_scene(s);
   RenderOptions o;

@@ -5,6 +5,7 @@
 // aspect correction; direction = normalize(x u + y v + D w), tmin = 0.
 #include "render/camera_rays.h"
 #include "render/render.h"
+#include "test_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -180,11 +181,7 @@ TEST(CameraRays, RenderedImageIsUprightAndNotMirrored) {
   Scene s;
   s.cameras.push_back(course_camera({0, 0, 10}, {0, 0, -1}, {0, 1, 0}, 30.f));
   s.spheres.push_back({vec3(1.5f, 1.5f, 0.f), 0.6f});  // up and to the right
-  Node n;
-  n.kind = Node::Kind::shape;
-  n.shape_kind = ShapeKind::sphere;
-  n.shape = 0;
-  s.nodes.push_back(n);
+  s.nodes.push_back(test::shape_node(ShapeKind::sphere, 0));
   s.root = 0;
   PreparedScene p = prepare_scene(s);
   RenderOptions o;

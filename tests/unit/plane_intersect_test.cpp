@@ -1,6 +1,7 @@
 // Ray/plane intersection (src/geometry/plane_intersect.h): the plane
 // n . p = d with n of any length, both sides, parallel rays, (tmin, tmax).
 #include "geometry/plane_intersect.h"
+#include "test_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -9,14 +10,7 @@
 namespace rayform {
 namespace {
 
-Ray make_ray(vec3 o, vec3 d, float tmin = 0.f, float tmax = infinity) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
-}
+using test::make_ray;
 
 TEST(PlaneIntersect, HitFromAbove) {
   // The course's floor: normal 0 1 0, offset -2 (y = -2).

@@ -7,6 +7,7 @@
 #include "scene/error.h"
 #include "scene/procedural_mesh.h"
 #include "test_paths.h"
+#include "test_scenes.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -26,25 +27,13 @@ const char* kCubeObj =
     "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
     "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
 
-Node shape_node(ShapeKind kind, int shape, int material = invalid) {
-  Node n;
-  n.kind = Node::Kind::shape;
-  n.shape_kind = kind;
-  n.shape = shape;
-  n.material = material;
-  return n;
-}
+using test::shape_node;
 
-// Root group 0 with the given children appended.
+// A default camera; root group 0 with the given children appended.
 Scene scene_with(std::vector<Node> children) {
   Scene s;
   s.cameras.push_back(Camera{});
-  s.nodes.push_back(Node{});
-  s.root = 0;
-  for (Node& n : children) {
-    s.nodes.push_back(std::move(n));
-    s.nodes[0].children.push_back(int(s.nodes.size()) - 1);
-  }
+  test::add_root_group(s, std::move(children));
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include "scene/procedural_mesh.h"
 #include "scene_io.h"
 #include "test_paths.h"
+#include "test_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -131,17 +132,7 @@ Scene two_quads(bool near_double_sided, bool near_facing = false) {
     return m;
   };
   s.meshes = {quad(1.f, near_facing), quad(0.f, true)};
-  s.nodes.push_back(Node{});
-  s.root = 0;
-  for (int i = 0; i < 2; ++i) {
-    Node n;
-    n.kind = Node::Kind::shape;
-    n.shape_kind = ShapeKind::mesh;
-    n.shape = i;
-    n.material = i;
-    s.nodes.push_back(n);
-    s.nodes[0].children.push_back(i + 1);
-  }
+  test::add_root_group(s, {test::shape_node(ShapeKind::mesh, 0, 0), test::shape_node(ShapeKind::mesh, 1, 1)});
   return s;
 }
 

@@ -6,6 +6,8 @@
 #include "course_txt/course_reader.h"
 #include "render/scene_intersect.h"
 #include "scene/procedural_mesh.h"
+#include "test_rays.h"
+#include "test_scenes.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -37,12 +39,7 @@ struct Builder {
     return add(n, parent);
   }
   int shape(ShapeKind kind, int index, int parent = 0, int material = invalid) {
-    Node n;
-    n.kind = Node::Kind::shape;
-    n.shape_kind = kind;
-    n.shape = index;
-    n.material = material;
-    return add(n, parent);
+    return add(test::shape_node(kind, index, material), parent);
   }
   int sphere(vec3 c, float r, int parent = 0, int material = invalid) {
     s.spheres.push_back({c, r});
@@ -62,14 +59,7 @@ struct Builder {
   }
 };
 
-Ray make_ray(vec3 o, vec3 d, float tmin = 0.f, float tmax = infinity) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
-}
+using test::make_ray;
 
 // Coordinates here are at most ~10; a few float roundings of the transform
 // and its inverse stay below 1e-5, while every mistake tested for (wrong

@@ -2,6 +2,7 @@
 // rays starting inside, the open interval (tmin, tmax), non-unit directions,
 // and the precision of the roots against a double-precision reference.
 #include "geometry/sphere_intersect.h"
+#include "test_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -10,14 +11,7 @@
 namespace rayform {
 namespace {
 
-Ray make_ray(vec3 o, vec3 d, float tmin = 0.f, float tmax = infinity) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
-}
+using test::make_ray;
 
 TEST(SphereIntersect, HeadOnHitGivesNearSurface) {
   float t = -1.f;

@@ -3,6 +3,7 @@
 // triangles, and rays through an edge or a vertex shared by two or more
 // triangles, which must hit at least one of them.
 #include "geometry/triangle_intersect.h"
+#include "test_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -11,14 +12,7 @@
 namespace rayform {
 namespace {
 
-Ray make_ray(vec3 o, vec3 d, float tmin = 0.f, float tmax = infinity) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
-}
+using test::make_ray;
 
 const vec3 P0(0, 0, 0), P1(1, 0, 0), P2(0, 1, 0);
 
