@@ -55,12 +55,17 @@ inline const std::vector<std::string>& mesh_names() {
   return names;
 }
 
+// The OBJ file of a scanned mesh, under RAYFORM_SHARED; "" for the procedural tori.
+inline std::string obj_path(const std::string& name) {
+  if (name == "bunny") return shared_dir() + "/assets/obj/stanford-bunny.obj";
+  if (name == "beast") return shared_dir() + "/assets/obj/beast.obj";
+  return "";
+}
+
 // Why a mesh is not available ("" when it is): the OBJ meshes need RAYFORM_SHARED.
 inline std::string mesh_unavailable(const std::string& name) {
-  if (name == "bunny" || name == "beast") {
-    std::string path = shared_dir() + "/assets/obj/" + (name == "bunny" ? "stanford-bunny.obj" : "beast.obj");
-    if (!std::filesystem::exists(path)) return "skipped: " + path + " not found (set RAYFORM_SHARED)";
-  }
+  std::string path = obj_path(name);
+  if (!path.empty() && !std::filesystem::exists(path)) return "skipped: " + path + " not found (set RAYFORM_SHARED)";
   return "";
 }
 
@@ -68,9 +73,8 @@ namespace detail {
 inline BenchMesh load_mesh(const std::string& name) {
   BenchMesh m;
   m.name = name;
-  if (name == "bunny" || name == "beast") {
-    ObjGeometry g = read_obj_geometry(shared_dir() + "/assets/obj/" +
-                                      (name == "bunny" ? "stanford-bunny.obj" : "beast.obj"));
+  if (std::string path = obj_path(name); !path.empty()) {
+    ObjGeometry g = read_obj_geometry(path);
     m.positions = std::move(g.positions);
     m.indices.reserve(g.corners.size());
     for (const ObjGeometry::Corner& c : g.corners) m.indices.push_back(uint32_t(c.position));
@@ -96,6 +100,13 @@ inline const BenchMesh* get_mesh(const std::string& name) {
   if (!mesh_unavailable(name).empty()) return nullptr;
   auto m = std::make_unique<BenchMesh>(detail::load_mesh(name));
   return (cache[name] = std::move(m)).get();
+}
+
+// The mesh for a benchmark, or nullptr after marking it skipped with the reason.
+inline const BenchMesh* mesh_or_skip(benchmark::State& state, const std::string& name) {
+  const BenchMesh* m = get_mesh(name);
+  if (!m) state.SkipWithError(mesh_unavailable(name).c_str());
+  return m;
 }
 
 // ---------------------------------------------------------------- rays
@@ -312,7 +323,6 @@ inline size_t embree_any(RTCScene scene, std::span<const Ray> rays) {
 // ---------------------------------------------------------------- verification
 
 struct Agreement {
-  size_t rays = 0;
   size_t closest_mismatches = 0;  // hit/miss differ, or t differs by more than 1e-4 relative
   size_t any_mismatches = 0;      // occluded differs
   size_t hits = 0;                // rays Embree reports a hit for
@@ -321,7 +331,6 @@ struct Agreement {
 // Traces every ray with both and counts disagreements.
 inline Agreement compare_with_embree(const MeshAccel& ours, RTCScene embree, std::span<const Ray> rays) {
   Agreement a;
-  a.rays = rays.size();
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   for (const Ray& r : rays) {

@@ -10,11 +10,10 @@
 // (a tbb::global_control caps both; not run for the 10M mesh).
 // Counters: ours, embree in ms; ratio = ours / embree (time: < 1 means we
 // build faster; the goal is <= 2).
+#include "bench_main.h"
 #include "bench_meshes.h"
 
 #include <tbb/global_control.h>
-
-#include <cstdio>
 
 using namespace rayform;
 using namespace rayform::bench;
@@ -22,22 +21,17 @@ using namespace rayform::bench;
 namespace {
 
 void bm_build(benchmark::State& state, std::string mesh, int threads, RTCBuildQuality quality) {
-  const BenchMesh* m = get_mesh(mesh);
-  if (!m) {
-    state.SkipWithError(mesh_unavailable(mesh).c_str());
-    return;
-  }
+  const BenchMesh* m = mesh_or_skip(state, mesh);
+  if (!m) return;
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   double ours_s = 0., embree_s = 0.;
-  size_t bytes = 0;
   for (auto _ : state) {
     double t0 = wall_seconds(), t1;
     {
       MeshAccel a = build_mesh_accel(m->vertex_span(), m->indices);
       t1 = wall_seconds();  // freeing is not timed (nor for Embree)
       benchmark::DoNotOptimize(a);
-      bytes = a.memory_bytes();
     }
     {
       double s = wall_seconds();
@@ -53,33 +47,21 @@ void bm_build(benchmark::State& state, std::string mesh, int threads, RTCBuildQu
   state.counters["ratio"] = ours_s / embree_s;
   state.counters["triangles"] = double(m->triangle_count());
   state.counters["Mtris_per_s"] = double(m->triangle_count()) * it / ours_s * 1e-6;
-  benchmark::DoNotOptimize(bytes);
   state.SetLabel("ms");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (const std::string& mesh : mesh_names()) {
-    std::string why = mesh_unavailable(mesh);
-    if (!why.empty()) std::fprintf(stderr, "%s: %s\n", mesh.c_str(), why.c_str());
+  for_each_mesh([](const std::string& mesh) {
     for (int threads : {0, 1}) {
       if (threads == 1 && mesh == "torus10M") continue;
-      std::string name = "build/" + mesh + "/threads:" + std::to_string(threads);
-      benchmark::RegisterBenchmark(name.c_str(), bm_build, mesh, threads, RTC_BUILD_QUALITY_MEDIUM)
-          ->UseManualTime()
-          ->Unit(benchmark::kMillisecond);
+      register_manual_ms("build/" + mesh + "/threads:" + std::to_string(threads), bm_build, mesh, threads,
+                         RTC_BUILD_QUALITY_MEDIUM);
     }
-    std::string name = "build/" + mesh + "/threads:0/embree_high";
-    benchmark::RegisterBenchmark(name.c_str(), bm_build, mesh, 0, RTC_BUILD_QUALITY_HIGH)
-        ->UseManualTime()
+    register_manual_ms("build/" + mesh + "/threads:0/embree_high", bm_build, mesh, 0, RTC_BUILD_QUALITY_HIGH)
         ->Iterations(1)
-        ->Repetitions(1)
-        ->Unit(benchmark::kMillisecond);
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+        ->Repetitions(1);
+  });
+  return run_benchmarks(argc, argv);
 }

@@ -8,9 +8,8 @@
 // Counters (bytes/triangle): ours, embree (held after rtcCommitScene, MEDIUM),
 // embree_high (HIGH), embree_build_peak (peak while building, MEDIUM);
 // ratio = ours / embree.
+#include "bench_main.h"
 #include "bench_meshes.h"
-
-#include <cstdio>
 
 using namespace rayform;
 using namespace rayform::bench;
@@ -30,11 +29,8 @@ EmbreeBytes embree_bytes(const BenchMesh& m, RTCBuildQuality q) {
 }
 
 void bm_memory(benchmark::State& state, std::string mesh) {
-  const BenchMesh* m = get_mesh(mesh);
-  if (!m) {
-    state.SkipWithError(mesh_unavailable(mesh).c_str());
-    return;
-  }
+  const BenchMesh* m = mesh_or_skip(state, mesh);
+  if (!m) return;
   double ours = 0.;
   EmbreeBytes med, high;
   for (auto _ : state) {
@@ -60,15 +56,10 @@ void bm_memory(benchmark::State& state, std::string mesh) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (const std::string& mesh : mesh_names()) {
-    std::string why = mesh_unavailable(mesh);
-    if (!why.empty()) std::fprintf(stderr, "%s: %s\n", mesh.c_str(), why.c_str());
-    std::string name = "memory/" + mesh;
-    benchmark::RegisterBenchmark(name.c_str(), bm_memory, mesh)->Iterations(1)->Unit(benchmark::kMillisecond);
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  for_each_mesh([](const std::string& mesh) {
+    benchmark::RegisterBenchmark(("memory/" + mesh).c_str(), bm_memory, mesh)
+        ->Iterations(1)
+        ->Unit(benchmark::kMillisecond);
+  });
+  return run_benchmarks(argc, argv);
 }

@@ -4,6 +4,7 @@
 // at least 1.8x faster than 1; scripts/bench reports the ratio).
 // Wall-clock time per render (prepare excluded, reported as prepare_ms).
 // Counters: ours = ms per render, Mrays_per_s = camera rays per second.
+#include "bench_main.h"
 #include "bench_meshes.h"
 #include "bench_scene.h"
 
@@ -11,7 +12,6 @@
 #include "render/render.h"
 #include "scene_io.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -25,26 +25,29 @@ struct RenderCase {
   int width, height;
 };
 
-// The scene of a case, loaded once; nullopt when its data is missing.
+// A course scene, under RAYFORM_SHARED.
+std::string course_scene_path(const std::string& name) { return shared_dir() + "/course/2012/" + name + ".txt"; }
+
+// The scene of a case, loaded once; nullptr when its data is missing.
 const Scene* case_scene(const std::string& name) {
   static std::map<std::string, std::optional<Scene>> cache;
-  auto it = cache.find(name);
-  if (it != cache.end()) return it->second ? &*it->second : nullptr;
-  std::optional<Scene> s;
-  if (name == "torus1M") {
-    s = make_mesh_scene(make_bumpy_torus(1'000'000, 1));
-  } else {
-    std::string path = shared_dir() + "/course/2012/" + name + ".txt";
-    if (std::filesystem::exists(path)) s = load_scene(path).scene;
+  auto [it, inserted] = cache.try_emplace(name);
+  std::optional<Scene>& s = it->second;
+  if (inserted) {
+    if (name == "torus1M") {
+      s = make_mesh_scene(make_bumpy_torus(1'000'000, 1));
+    } else {
+      std::string path = course_scene_path(name);
+      if (std::filesystem::exists(path)) s = load_scene(path).scene;
+    }
   }
-  auto& slot = cache[name] = std::move(s);
-  return slot ? &*slot : nullptr;
+  return s ? &*s : nullptr;
 }
 
 void bm_render(benchmark::State& state, RenderCase c, int threads) {
   const Scene* scene = case_scene(c.name);
   if (!scene) {
-    std::string msg = "skipped: " + shared_dir() + "/course/2012/" + c.name + ".txt not found (set RAYFORM_SHARED)";
+    std::string msg = "skipped: " + course_scene_path(c.name) + " not found (set RAYFORM_SHARED)";
     state.SkipWithError(msg.c_str());
     return;
   }
@@ -75,16 +78,9 @@ void bm_render(benchmark::State& state, RenderCase c, int threads) {
 
 int main(int argc, char** argv) {
   for (const RenderCase& c : {RenderCase{"scene06_bunny_1k", 200, 200}, RenderCase{"torus1M", 1920, 1080}})
-    for (int threads : {1, 2}) {
-      std::string name = "render/" + c.name + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
-                         "/threads:" + std::to_string(threads);
-      benchmark::RegisterBenchmark(name.c_str(), bm_render, c, threads)
-          ->UseManualTime()
-          ->Unit(benchmark::kMillisecond);
-    }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+    for (int threads : {1, 2})
+      register_manual_ms("render/" + c.name + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                             "/threads:" + std::to_string(threads),
+                         bm_render, c, threads);
+  return run_benchmarks(argc, argv);
 }
