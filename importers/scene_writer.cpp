@@ -160,8 +160,6 @@ bool is_similarity(const mat4& m, float* scale) {
   return true;
 }
 
-bool is_identity(const mat4& m) { return m == mat4(1.f); }
-
 }  // namespace
 
 Mesh transform_mesh(const Mesh& src, const mat4& m) {
@@ -285,6 +283,14 @@ std::string format_float(float v) {
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
+}
+
+std::string format_vec3(vec3 v) { return format_float(v.x) + " " + format_float(v.y) + " " + format_float(v.z); }
+
+std::string quoted_list(const std::set<std::string>& names) {
+  std::string out;
+  for (const std::string& x : names) out += (out.empty() ? "'" : ", '") + x + "'";
+  return out;
 }
 
 std::string safe_file_name(const std::string& name) {

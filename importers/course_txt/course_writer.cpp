@@ -40,10 +40,6 @@ std::vector<vec3> course_normals(const Mesh& mesh, const std::vector<uint32_t>& 
 
 namespace {
 
-bool is_identity(const mat4& m) { return m == mat4(1.f); }
-
-std::string v3(vec3 v) { return format_float(v.x) + " " + format_float(v.y) + " " + format_float(v.z); }
-
 // Vertices at one position with one normal are one course position; a mesh
 // without normals shares nothing (the course then gives each face its own normal).
 std::vector<uint32_t> sharing(const Mesh& m) {
@@ -73,12 +69,6 @@ float normal_deviation(const Mesh& m, const std::vector<vec3>& course) {
     worst = std::max(worst, std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * 180.0 / M_PI);
   }
   return float(worst);
-}
-
-vec2 apply_uv_transform(const UvTransform& t, vec2 uv) {
-  float c = std::cos(t.rotation), s = std::sin(t.rotation);
-  vec2 scaled = uv * t.scale;
-  return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
 }
 
 class CourseBuilder {
@@ -175,9 +165,9 @@ class CourseBuilder {
     if (dialect_ == CourseDialect::v2012 && raw_up_matters(c))
       note("camera: its raw up vector (2019) becomes the orthonormal one in the 2012 dialect");
     o << "PerspectiveCamera {\n"
-      << "    center " << v3(c.center) << "\n"
-      << "    direction " << v3(c.direction) << "\n"
-      << "    up " << v3(c.up) << "\n"
+      << "    center " << format_vec3(c.center) << "\n"
+      << "    direction " << format_vec3(c.direction) << "\n"
+      << "    up " << format_vec3(c.up) << "\n"
       << "    angle " << format_float(angle) << "\n"
       << "}\n\n";
   }
@@ -187,13 +177,13 @@ class CourseBuilder {
     int spots = 0, ranges = 0, falloffs = 0;
     for (const Light& l : s_.lights) {
       if (l.kind == Light::Kind::directional) {
-        o << "    DirectionalLight {\n        direction " << v3(l.direction) << "\n        color " << v3(l.color)
+        o << "    DirectionalLight {\n        direction " << format_vec3(l.direction) << "\n        color " << format_vec3(l.color)
           << "\n    }\n";
         continue;
       }
       if (l.kind == Light::Kind::spot) ++spots;
       if (l.range > 0.f) ++ranges;
-      o << "    PointLight {\n        position " << v3(l.position) << "\n        color " << v3(l.color) << "\n";
+      o << "    PointLight {\n        position " << format_vec3(l.position) << "\n        color " << format_vec3(l.color) << "\n";
       if (l.falloff > 0.f) {
         if (dialect_ == CourseDialect::v2019) o << "        falloff " << format_float(l.falloff) << "\n";
         else ++falloffs;
@@ -212,7 +202,7 @@ class CourseBuilder {
 
   void write_background(std::ostringstream& o) {
     const Background& b = s_.background;
-    o << "Background {\n    color " << v3(b.color) << "\n    ambientLight " << v3(b.ambient) << "\n";
+    o << "Background {\n    color " << format_vec3(b.color) << "\n    ambientLight " << format_vec3(b.ambient) << "\n";
     if (b.cube_map[0] != invalid) {
       std::string dir = safe_file_name(stem_ + "_cubemap");
       static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
@@ -243,8 +233,8 @@ class CourseBuilder {
     std::set<std::string> emissive, cutouts, modulated, vertex_colored, bumps_dropped, single_sided, two_sided;
     for (const Material& m : s_.materials) {
       o << "    PhongMaterial {\n"
-        << "        diffuseColor " << v3(m.diffuse) << "\n"
-        << "        specularColor " << v3(m.specular) << "\n"
+        << "        diffuseColor " << format_vec3(m.diffuse) << "\n"
+        << "        specularColor " << format_vec3(m.specular) << "\n"
         << "        shininess " << format_float(m.shininess) << "\n";
       if (m.diffuse_texture != invalid) {
         std::string f = texture(m.diffuse_texture);
@@ -268,28 +258,23 @@ class CourseBuilder {
     }
     if (need_default_) o << "    PhongMaterial {\n        diffuseColor 1 1 1\n    }\n";
     o << "}\n\n";
-    auto list = [](const std::set<std::string>& s) {
-      std::string out;
-      for (const std::string& x : s) out += (out.empty() ? "'" : ", '") + x + "'";
-      return out;
-    };
-    if (!emissive.empty()) note("materials " + list(emissive) + ": emission dropped (the course has none)");
-    if (!cutouts.empty()) note("materials " + list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
+    if (!emissive.empty()) note("materials " + quoted_list(emissive) + ": emission dropped (the course has none)");
+    if (!cutouts.empty()) note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
     if (!two_sided.empty())
-      note("materials " + list(two_sided) + ": back faces are shaded with their normals as given, not reversed " +
+      note("materials " + quoted_list(two_sided) + ": back faces are shaded with their normals as given, not reversed " +
            "towards the viewer (the course format's convention)");
     if (!single_sided.empty())
-      note("materials " + list(single_sided) + ": single-sided becomes double-sided (the course has no such flag)");
+      note("materials " + quoted_list(single_sided) + ": single-sided becomes double-sided (the course has no such flag)");
     if (!modulated.empty())
-      note("materials " + list(modulated) +
+      note("materials " + quoted_list(modulated) +
            ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
-    if (!bumps_dropped.empty()) note("materials " + list(bumps_dropped) + ": bump maps dropped (2012 dialect; write --dialect 2019)");
+    if (!bumps_dropped.empty()) note("materials " + quoted_list(bumps_dropped) + ": bump maps dropped (2012 dialect; write --dialect 2019)");
     if (need_default_)
       note("shapes without a material follow a MaterialIndex: they use an added white material " +
            std::to_string(s_.materials.size()));
     for (const Mesh& m : s_.meshes)
       if (!m.colors.empty()) vertex_colored.insert(m.name);
-    if (!vertex_colored.empty()) note("meshes " + list(vertex_colored) + ": vertex colours dropped (the course has none)");
+    if (!vertex_colored.empty()) note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
   }
 
   // The BMP file of a Scene texture ("" when it cannot be read).
@@ -375,16 +360,16 @@ class CourseBuilder {
         uint32_t rep = share[i];
         if (vindex[rep] < 0) {
           vindex[rep] = nv++;
-          o << "v " << v3(m.positions[rep]) << "\n";
+          o << "v " << format_vec3(m.positions[rep]) << "\n";
         }
         vi = uint32_t(vindex[rep]);
       } else {
         vi = nv++;  // unshared: the course gives each face its own normal
-        o << "v " << v3(m.positions[i]) << "\n";
+        o << "v " << format_vec3(m.positions[i]) << "\n";
       }
       uint32_t ti = 0;
       if (has_uvs) {
-        vec2 uv = t ? apply_uv_transform(*t, m.uvs[i]) : m.uvs[i];
+        vec2 uv = t ? t->apply(m.uvs[i]) : m.uvs[i];
         std::pair<uint32_t, uint32_t> k;
         std::memcpy(&k.first, &uv.x, 4);
         std::memcpy(&k.second, &uv.y, 4);
@@ -519,20 +504,20 @@ class CourseBuilder {
     switch (n.shape_kind) {
       case ShapeKind::sphere: {
         const Sphere& s = s_.spheres.at(size_t(n.shape));
-        o << pad << "Sphere {\n" << pad << "    center " << v3(s.center) << "\n" << pad << "    radius "
+        o << pad << "Sphere {\n" << pad << "    center " << format_vec3(s.center) << "\n" << pad << "    radius "
           << format_float(s.radius) << "\n" << pad << "}\n";
         break;
       }
       case ShapeKind::plane: {
         const Plane& p = s_.planes.at(size_t(n.shape));
-        o << pad << "Plane {\n" << pad << "    normal " << v3(p.normal) << "\n" << pad << "    offset "
+        o << pad << "Plane {\n" << pad << "    normal " << format_vec3(p.normal) << "\n" << pad << "    offset "
           << format_float(p.offset) << "\n" << pad << "}\n";
         break;
       }
       case ShapeKind::triangle: {
         const Triangle& t = s_.triangles.at(size_t(n.shape));
         o << pad << "Triangle {\n";
-        for (int k = 0; k < 3; ++k) o << pad << "    vertex" << k << " " << v3(t.vertices[size_t(k)]) << "\n";
+        for (int k = 0; k < 3; ++k) o << pad << "    vertex" << k << " " << format_vec3(t.vertices[size_t(k)]) << "\n";
         o << pad << "}\n";
         break;
       }
@@ -625,25 +610,20 @@ class CourseBuilder {
   // ---- messages -------------------------------------------------------------------------
 
   void report() {
-    auto list = [](const std::set<std::string>& s) {
-      std::string out;
-      for (const std::string& x : s) out += (out.empty() ? "'" : ", '") + x + "'";
-      return out;
-    };
     if (!normals_changed_.empty())
-      note("meshes " + list(normals_changed_) +
+      note("meshes " + quoted_list(normals_changed_) +
            ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
            "by up to " + format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
     if (!baked_uvs_.empty())
-      note("materials " + list(baked_uvs_) + ": uv transform baked into the uvs of their meshes' OBJ files");
+      note("materials " + quoted_list(baked_uvs_) + ": uv transform baked into the uvs of their meshes' OBJ files");
     if (!srgb_.empty())
-      note("textures " + list(srgb_) + ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
+      note("textures " + quoted_list(srgb_) + ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
     if (!half_texel_.empty())
-      note("textures " + list(half_texel_) + ": the course samples with texel centres on whole numbers (half a texel off "
+      note("textures " + quoted_list(half_texel_) + ": the course samples with texel centres on whole numbers (half a texel off "
            "the usual convention)");
-    if (!repeat_.empty()) note("textures " + list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
-    if (!nearest_.empty()) note("textures " + list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
-    if (!alpha_dropped_.empty()) note("textures " + list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
+    if (!repeat_.empty()) note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
+    if (!nearest_.empty()) note("textures " + quoted_list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
+    if (!alpha_dropped_.empty()) note("textures " + quoted_list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
   }
 
   Scene s_;

@@ -69,8 +69,6 @@ Value rayform_extras(Value::Object obj) {
   return Value(std::move(root));
 }
 
-bool is_identity(const mat4& m) { return m == mat4(1.f); }
-
 // ---- matrices ----------------------------------------------------------------------------
 
 // Whether a glTF node can hold m as a matrix: affine, and its linear part a
@@ -834,11 +832,6 @@ class GltfBuilder {
   // ---- messages ----------------------------------------------------------------------------
 
   void report() {
-    auto list = [](const std::set<std::string>& s) {
-      std::string out;
-      for (const std::string& x : s) out += (out.empty() ? "'" : ", '") + x + "'";
-      return out;
-    };
     if (spheres_)
       note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
            " segments, " + std::to_string(tessellate_sphere(Sphere{}, options_.sphere_segments).triangle_count()) +
@@ -860,12 +853,12 @@ class GltfBuilder {
     if (!scene_.materials.empty())
       note("Phong materials converted to metallic-roughness (docs/convert.md); the exact Phong values are kept in the "
            "material extras");
-    if (!clamped_.empty()) note("materials " + list(clamped_) + ": diffuse colour outside [0, 1] clamped in baseColorFactor");
+    if (!clamped_.empty()) note("materials " + quoted_list(clamped_) + ": diffuse colour outside [0, 1] clamped in baseColorFactor");
     if (!raw_textures_.empty())
-      note("textures " + list(raw_textures_) +
+      note("textures " + quoted_list(raw_textures_) +
            ": course textures (raw texels, texel centres on whole numbers) are kept as they are, the course's reading in "
            "the texture extras; other viewers read them as sRGB with the usual texel centres");
-    if (!converted_.empty()) note("textures " + list(converted_) + " converted to PNG (glTF holds PNG and JPEG)");
+    if (!converted_.empty()) note("textures " + quoted_list(converted_) + " converted to PNG (glTF holds PNG and JPEG)");
     if (bump_maps_) note(std::to_string(bump_maps_) + " bump map(s) kept as textures named in the material extras only (glTF has height maps only as normal maps)");
     if (refractive_) note(std::to_string(refractive_) + " refraction index(es) kept in the material extras only");
     if (stretched_)

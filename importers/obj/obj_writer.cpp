@@ -14,22 +14,12 @@ namespace rayform {
 namespace fs = std::filesystem;
 namespace {
 
-bool is_identity(const mat4& m) { return m == mat4(1.f); }
-
-std::string v3(vec3 v) { return format_float(v.x) + " " + format_float(v.y) + " " + format_float(v.z); }
-
 // Exact-value keys for deduplication.
 template <size_t N>
 std::array<uint32_t, N> bits(const float* f) {
   std::array<uint32_t, N> k;
   std::memcpy(k.data(), f, N * 4);
   return k;
-}
-
-vec2 apply_uv_transform(const UvTransform& t, vec2 uv) {
-  float c = std::cos(t.rotation), s = std::sin(t.rotation);
-  vec2 scaled = uv * t.scale;
-  return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
 }
 
 class ObjBuilder {
@@ -140,11 +130,11 @@ class ObjBuilder {
         kd = vec3(1.f);
       }
       o << "\nnewmtl " << names_[size_t(mi)] << "\n";
-      o << "Kd " << v3(kd) << "\n";
-      o << "Ks " << v3(m.specular) << "\n";
+      o << "Kd " << format_vec3(kd) << "\n";
+      o << "Ks " << format_vec3(m.specular) << "\n";
       o << "Ns " << format_float(m.shininess) << "\n";
       if (m.shininess == 0.f && m.specular != vec3(0.f)) ns_zero_.insert(m.name);
-      if (m.emission != vec3(0.f)) o << "Ke " << v3(m.emission) << "\n";
+      if (m.emission != vec3(0.f)) o << "Ke " << format_vec3(m.emission) << "\n";
       if (m.refraction_index != 0.f) o << "Ni " << format_float(m.refraction_index) << "\n";
       o << "illum 2\n";
       if (m.alpha_cutoff >= 0.f) cutouts_.insert(m.name);
@@ -213,7 +203,7 @@ class ObjBuilder {
           c = it->second;
         } else {
           vec3 col = has_c ? m.colors[i] : vec3(1.f);
-          c = {position(m.positions[i], col), has_uv ? texcoord(t ? apply_uv_transform(*t, m.uvs[i]) : m.uvs[i]) : 0u,
+          c = {position(m.positions[i], col), has_uv ? texcoord(t ? t->apply(m.uvs[i]) : m.uvs[i]) : 0u,
                normal(has_n ? m.normals[i] : face_n)};
           if (has_n) {
             // Two vertices of one mesh with equal values stay two vertices:
@@ -248,8 +238,8 @@ class ObjBuilder {
   }
   // A `v` line of its own (also for a value written before).
   uint32_t new_position(vec3 p, vec3 c) {
-    body_ << "v " << v3(p);
-    if (any_colors_) body_ << " " << v3(c);
+    body_ << "v " << format_vec3(p);
+    if (any_colors_) body_ << " " << format_vec3(c);
     body_ << "\n";
     return ++v_count_;
   }
@@ -268,7 +258,7 @@ class ObjBuilder {
     }
     float f[3] = {n.x, n.y, n.z};
     auto [it, inserted] = normals_.emplace(bits<3>(f), uint32_t(normals_.size() + 1));
-    if (inserted) body_ << "vn " << v3(n) << "\n";
+    if (inserted) body_ << "vn " << format_vec3(n) << "\n";
     return it->second;
   }
 
@@ -350,11 +340,6 @@ class ObjBuilder {
   // ---- messages --------------------------------------------------------------------------
 
   void report() {
-    auto list = [](const std::set<std::string>& s) {
-      std::string out;
-      for (const std::string& x : s) out += (out.empty() ? "'" : ", '") + x + "'";
-      return out;
-    };
     if (!options_.flattened && (baked_transforms_ || nested_))
       note("OBJ has no transforms and no node hierarchy: transforms baked into the vertices, each node's shapes "
            "written as one 'o' section (" + std::to_string(sections_) + " section(s))");
@@ -379,21 +364,21 @@ class ObjBuilder {
     if (b.color != Background{}.color || b.ambient != vec3(0.f) || b.cube_map[0] != invalid)
       note("background colour, ambient light and cube map dropped (OBJ has no background)");
     if (!replaced_.empty())
-      note("materials " + list(replaced_) + ": their texture replaces the colour (course), written as Kd 1 1 1 "
+      note("materials " + quoted_list(replaced_) + ": their texture replaces the colour (course), written as Kd 1 1 1 "
            "(the diffuse colour, used where a shape has no uvs, is dropped)");
-    if (!baked_.empty()) note("materials " + list(baked_) + ": rotated uv transform baked into the vt values");
-    if (!ns_zero_.empty()) note("materials " + list(ns_zero_) + ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
-    if (!cutouts_.empty()) note("materials " + list(cutouts_) + ": alpha cut-outs dropped");
+    if (!baked_.empty()) note("materials " + quoted_list(baked_) + ": rotated uv transform baked into the vt values");
+    if (!ns_zero_.empty()) note("materials " + quoted_list(ns_zero_) + ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
+    if (!cutouts_.empty()) note("materials " + quoted_list(cutouts_) + ": alpha cut-outs dropped");
     if (!single_sided_.empty())
-      note("materials " + list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
+      note("materials " + quoted_list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
     if (!one_side_lit_.empty())
-      note("materials " + list(one_side_lit_) + ": back faces will be shaded with their normals reversed towards " +
+      note("materials " + quoted_list(one_side_lit_) + ": back faces will be shaded with their normals reversed towards " +
            "the viewer, as OBJ materials are (the source shades them with the normal as given)");
     if (!course_lookup_.empty())
-      note("textures " + list(course_lookup_) + ": the course's texel centres (on whole numbers) are not expressible; "
+      note("textures " + quoted_list(course_lookup_) + ": the course's texel centres (on whole numbers) are not expressible; "
            "OBJ readers sample half a texel off");
-    if (!nearest_.empty()) note("textures " + list(nearest_) + ": nearest filtering dropped");
-    if (!mirror_.empty()) note("textures " + list(mirror_) + ": mirrored or mixed wrap modes become repeat");
+    if (!nearest_.empty()) note("textures " + quoted_list(nearest_) + ": nearest filtering dropped");
+    if (!mirror_.empty()) note("textures " + quoted_list(mirror_) + ": mirrored or mixed wrap modes become repeat");
   }
 
   const Scene& scene_;

@@ -50,6 +50,8 @@ inline int max_dimension(vec3 v) { return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v
 inline bool is_finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Point and vector transforms by an affine 4x4 matrix.
+inline bool is_identity(const mat4& m) { return m == mat4(1.f); }
+
 inline vec3 transform_point(const mat4& m, vec3 p) { return vec3(m * vec4(p, 1.0f)); }
 inline vec3 transform_vector(const mat4& m, vec3 v) { return vec3(m * vec4(v, 0.0f)); }
 

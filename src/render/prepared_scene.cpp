@@ -7,8 +7,6 @@
 namespace rayform {
 namespace {
 
-bool is_identity(const mat4& m) { return m == mat4(1.f); }
-
 Bounds3 object_bounds(const Scene& scene, ShapeKind kind, int shape, const std::vector<MeshAccel>& meshes) {
   Bounds3 b;
   switch (kind) {

@@ -51,12 +51,7 @@ inline vec4 surface_albedo(const PreparedScene& p, const Material& m, const Surf
   vec4 k(m.diffuse, 1.f);
   if (m.diffuse_texture >= 0 && sp.has_uv) {
     vec2 uv = sp.uv;
-    if (!m.uv_transform.is_identity()) {
-      const UvTransform& t = m.uv_transform;
-      float c = std::cos(t.rotation), s = std::sin(t.rotation);
-      vec2 scaled = uv * t.scale;
-      uv = vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
-    }
+    if (!m.uv_transform.is_identity()) uv = m.uv_transform.apply(uv);
     vec4 texel = sample_texture(p.textures[m.diffuse_texture], uv);
     k = m.texture_modulates ? k * texel : texel;
   }

@@ -77,6 +77,12 @@ struct UvTransform {
   float rotation = 0.f;  // radians
   vec2 scale{1.f};
   bool is_identity() const { return offset == vec2(0.f) && rotation == 0.f && scale == vec2(1.f); }
+  // uv' = T R S uv, R = rows (cos, sin), (-sin, cos) (KHR_texture_transform).
+  vec2 apply(vec2 uv) const {
+    float c = std::cos(rotation), s = std::sin(rotation);
+    vec2 scaled = uv * scale;
+    return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + offset;
+  }
 };
 
 // Phong material. Colours are linear RGB.
