@@ -52,6 +52,14 @@ struct Range {
   uint32_t count() const { return end - begin; }
 };
 
+// Adds a primitive's box and doubled centroid to r's boxes (not to its items).
+inline void add(Range& r, const PrimRef& p) {
+  f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
+  r.geom.expand(lo, hi);
+  f4 c = lo + hi;
+  r.cent.expand(c, c);
+}
+
 constexpr int max_bins = 64;
 
 struct Split {
@@ -264,13 +272,6 @@ class MeshBuilder {
     return best;
   }
 
-  static void add(Range& r, const PrimRef& p) {
-    f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
-    r.geom.expand(lo, hi);
-    f4 c = lo + hi;
-    r.cent.expand(c, c);
-  }
-
   // Splits r by s (or, without a SAH split, by count) into two non-empty ranges.
   std::pair<Range, Range> partition(const Range& r, const Split& s) {
     Range left, right;
@@ -466,26 +467,18 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   }
   if (refs.empty()) return m;
 
-  struct RootBounds {
-    Box geom, cent;
-  };
-  RootBounds rb = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, refs.size(), 1u << 14), RootBounds{},
-      [&](const tbb::blocked_range<size_t>& r, RootBounds acc) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-          f4 lo = simd::load(refs[i].lo), hi = simd::load(refs[i].hi);
-          acc.geom.expand(lo, hi);
-          f4 c = lo + hi;
-          acc.cent.expand(c, c);
-        }
+  Range root = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, refs.size(), 1u << 14), Range{},
+      [&](const tbb::blocked_range<size_t>& r, Range acc) {
+        for (size_t i = r.begin(); i < r.end(); ++i) add(acc, refs[i]);
         return acc;
       },
-      [](RootBounds a, const RootBounds& b) {
+      [](Range a, const Range& b) {
         a.geom.expand(b.geom);
         a.cent.expand(b.cent);
         return a;
       });
-  Range root{0, uint32_t(refs.size()), rb.geom, rb.cent};
+  root.end = uint32_t(refs.size());
 
   MeshBuilder builder(refs, options);
   const BuildNode* tree = builder.build(root);
@@ -497,8 +490,8 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   m.triangles.resize(tree->triangles);
   Flattener{refs, positions, indices, m}.write(tree, 0, 0, 0);
   float l[4], h[4];
-  simd::store(l, rb.geom.lo);
-  simd::store(h, rb.geom.hi);
+  simd::store(l, root.geom.lo);
+  simd::store(h, root.geom.hi);
   m.bvh.root_bounds = Bounds3{vec3(l[0], l[1], l[2]), vec3(h[0], h[1], h[2])};
   return m;
 }
@@ -537,7 +530,10 @@ struct PacketHits {
 // intersect_triangle of geometry/triangle_intersect.h on four triangles: the
 // same float operations in the same order, lane by lane, so the same hits and
 // the same values (bvh_test checks this bit for bit against the scalar test).
-// Keep the two in step.
+// Keep the two in step. One difference: `front` below accepts a lane whose
+// vertices all lie in front by more than their z error without the t bound,
+// which the scalar test always applies (and which rejects hits on extreme
+// slivers, e.g. 2000 x 2e-7 at distance 1, that this test keeps).
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -622,7 +618,12 @@ constexpr float far_scale = 1.f + 2.f * gamma_bound(3);
 // MeshBuilder::sah_depth_limit), each pushing at most width - 1 entries.
 constexpr int stack_size = 66 * (WideBvhNode::width - 1) + 1;
 
-inline int lowest_bit(int mask) { return std::countr_zero(unsigned(mask)); }
+// The index of mask's lowest set bit (mask != 0), which is cleared.
+inline int pop_lowest_bit(int& mask) {
+  const int i = std::countr_zero(unsigned(mask));
+  mask &= mask - 1;
+  return i;
+}
 
 // Asks for the memory of a child before it is visited (traversal is bound by
 // cache misses on incoherent rays): a node's four cache lines, or the first

@@ -3,7 +3,8 @@
 // packets of four triangles with their vertices stored SoA, so that traversal
 // touches two compact arrays and never the Scene. The triangle test is the
 // watertight one of geometry/triangle_intersect.h, evaluated four triangles at
-// a time with the very same float operations (bit-identical results).
+// a time with the very same float operations (bit-identical results, but for
+// the early accept of hits in front of every vertex: see intersect_packet).
 #pragma once
 
 #include "accel/bvh.h"

@@ -5,10 +5,19 @@
 // enters before tmax; TriRay, intersect_packet and octant come from
 // mesh_accel.cpp. Each kernel is instantiated for the eight octants of the
 // ray direction (constant plane rows in the node test).
-//
+
+// node_hits with the node's child references prefetched meanwhile (they are
+// read only after the box test).
+template <int Oct>
+inline int children_hit(const WideBvhNode& n, const NodeRay& nr, float tmax, float* t_enter) {
+#if defined(__GNUC__)
+  __builtin_prefetch(n.child);
+#endif
+  return node_hits<Oct>(n, nr, tmax, t_enter);
+}
+
 // Closest hit: nearest child first, the others pushed with their entry
 // distance and skipped when popped behind the closest hit found meanwhile.
-
 template <int Oct>
 inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, float& tmax, MeshHit* hit) {
   const WideBvhNode* nodes = m.bvh.nodes.data();
@@ -26,20 +35,15 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
   for (;;) {
     if (!WideBvhNode::is_leaf(ref)) {
       const WideBvhNode& n = nodes[ref];
-#if defined(__GNUC__)
-      __builtin_prefetch(n.child);  // the child references are read only after the box test
-#endif
       alignas(32) float tn[WideBvhNode::width];
-      int mask = node_hits<Oct>(n, nr, tmax, tn);
+      int mask = children_hit<Oct>(n, nr, tmax, tn);
       if (mask != 0) {
-        int i = lowest_bit(mask);
-        mask &= mask - 1;
+        int i = pop_lowest_bit(mask);
         if (mask == 0) {  // one child hit: go on without the stack
           ref = n.child[i];
           continue;
         }
-        int j = lowest_bit(mask);
-        mask &= mask - 1;
+        int j = pop_lowest_bit(mask);
         if (mask == 0) {  // two: the nearer first
           if (tn[j] < tn[i]) std::swap(i, j);
           prefetch_child(nodes, packets, n.child[j]);
@@ -52,8 +56,7 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
         stack[top++] = {n.child[i], tn[i]};
         stack[top++] = {n.child[j], tn[j]};
         while (mask) {
-          int k = lowest_bit(mask);
-          mask &= mask - 1;
+          int k = pop_lowest_bit(mask);
           stack[top++] = {n.child[k], tn[k]};
         }
         for (int a = base; a < top - 1; ++a) prefetch_child(nodes, packets, stack[a].ref);
@@ -76,9 +79,10 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
         if (!h.mask) continue;
         alignas(16) float ts[4];
         simd::store(ts, h.t);
-        int best = lowest_bit(h.mask);
-        for (int rest = h.mask & (h.mask - 1); rest; rest &= rest - 1) {  // the lowest lane wins ties,
-          int lane = lowest_bit(rest);                                     // as the scalar loop's order would
+        int rest = h.mask;
+        int best = pop_lowest_bit(rest);
+        while (rest) {  // the lowest lane wins ties, as the scalar loop's order would
+          int lane = pop_lowest_bit(rest);
           if (ts[lane] < ts[best]) best = lane;
         }
         tmax = ts[best];
@@ -122,17 +126,12 @@ inline bool occluded_octant(const MeshAccel& m, const NodeRay& nr, const TriRay&
   for (;;) {
     if (!WideBvhNode::is_leaf(ref)) {
       const WideBvhNode& n = nodes[ref];
-#if defined(__GNUC__)
-      __builtin_prefetch(n.child);  // the child references are read only after the box test
-#endif
       alignas(32) float tn[WideBvhNode::width];
-      int mask = node_hits<Oct>(n, nr, tmax, tn);
+      int mask = children_hit<Oct>(n, nr, tmax, tn);
       if (mask != 0) {
-        int i = lowest_bit(mask);
-        mask &= mask - 1;
+        int i = pop_lowest_bit(mask);
         while (mask) {
-          int k = lowest_bit(mask);
-          mask &= mask - 1;
+          int k = pop_lowest_bit(mask);
           stack[top++] = n.child[k];
           prefetch_child(nodes, packets, n.child[k]);
         }

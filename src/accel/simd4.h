@@ -42,7 +42,6 @@ inline m4 operator&(m4 a, m4 b) { return {_mm_and_ps(a.v, b.v)}; }
 inline m4 andnot(m4 a, m4 b) { return {_mm_andnot_ps(b.v, a.v)}; }  // a & ~b
 inline m4 operator~(m4 a) { return {_mm_xor_ps(a.v, _mm_castsi128_ps(_mm_set1_epi32(-1)))}; }
 inline int mask_bits(m4 m) { return _mm_movemask_ps(m.v); }
-inline f4 select(m4 m, f4 a, f4 b) { return {_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))}; }
 // Half the surface area of the box [lo, hi] (lanes 0..2), 0 when empty.
 inline float half_area(f4 lo, f4 hi) {
   __m128 e = _mm_sub_ps(hi.v, lo.v);
@@ -102,7 +101,6 @@ inline int mask_bits(m4 m) {
   for (int i = 0; i < 4; ++i) r |= int(m.v[i] >> 31) << i;
   return r;
 }
-inline f4 select(m4 m, f4 a, f4 b) { RAYFORM_F4_OP(m.v[i] ? a.v[i] : b.v[i]); }
 inline float half_area(f4 lo, f4 hi) {
   float ex = hi.v[0] - lo.v[0], ey = hi.v[1] - lo.v[1], ez = hi.v[2] - lo.v[2];
   if (!(ex >= 0.f && ey >= 0.f && ez >= 0.f)) return 0.f;

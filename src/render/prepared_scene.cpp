@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace rayform {
 namespace {
@@ -107,7 +108,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     f.planes |= inst.kind == ShapeKind::plane;
   }
   p.textures.resize(scene.textures.size());
-  std::vector<int> to_decode;  // scene texture handles, each once
+  std::vector<std::pair<int, TextureImage*>> to_decode;  // scene texture handle, destination
   std::vector<uint8_t> queued(scene.textures.size(), 0);
   for (size_t i = 0; i < p.materials.size(); ++i) {
     if (!material_used[i]) continue;
@@ -118,7 +119,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     int t = m.diffuse_texture;
     if (t >= 0 && t < int(scene.textures.size())) {
       f.textures = true;
-      if (!queued[t]) { queued[t] = 1; to_decode.push_back(t); }
+      if (!queued[t]) { queued[t] = 1; to_decode.push_back({t, &p.textures[t]}); }
     }
   }
   for (const Light& l : scene.lights) {
@@ -127,18 +128,18 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   }
   if (scene.background.cube_map[0] != invalid) {
     f.cube_map = true;
-    for (int face : scene.background.cube_map)
+    p.cube_map.resize(scene.background.cube_map.size());
+    for (size_t i = 0; i < p.cube_map.size(); ++i) {
+      const int face = scene.background.cube_map[i];
       if (face < 0 || face >= int(scene.textures.size())) throw Error("scene: cube map face texture missing");
+      to_decode.push_back({face, &p.cube_map[i]});
+    }
   }
   // Decode the used textures and cube-map faces in parallel (PNG/JPEG decoding
   // dominates preparation of textured scenes).
-  std::vector<TextureImage> faces(f.cube_map ? 6 : 0);
-  size_t jobs = to_decode.size() + faces.size();
-  tbb::parallel_for(size_t(0), jobs, [&](size_t j) {
-    if (j < to_decode.size()) p.textures[to_decode[j]] = decode_texture(scene.textures[to_decode[j]]);
-    else faces[j - to_decode.size()] = decode_texture(scene.textures[scene.background.cube_map[j - to_decode.size()]]);
+  tbb::parallel_for(size_t(0), to_decode.size(), [&](size_t j) {
+    *to_decode[j].second = decode_texture(scene.textures[to_decode[j].first]);
   });
-  p.cube_map = std::move(faces);
   return p;
 }
 

@@ -27,10 +27,10 @@ TextureImage decode_texture(const Texture& texture) {
   t.wrap_v = texture.wrap_v;
   t.filter = texture.filter;
   t.lookup = texture.lookup;
-  for (int v = 0; v < 256; ++v) t.to_linear[v] = texture.srgb ? srgb_to_linear(v / 255.f) : v / 255.f;
   Image8 img8;
   const bool eight_bit = !texture.pixels.empty() || read_image8(texture.path, &img8);
   if (eight_bit) {
+    for (int v = 0; v < 256; ++v) t.to_linear[v] = texture.srgb ? srgb_to_linear(v / 255.f) : v / 255.f;
     const uint8_t* src = texture.pixels.empty() ? img8.pixels.data() : texture.pixels.data();
     int c = texture.pixels.empty() ? img8.channels : texture.channels;
     t.width = texture.pixels.empty() ? img8.width : texture.width;
@@ -76,34 +76,33 @@ int wrap_index(int i, int n, Texture::Wrap w) {
 vec4 sample_texture(const TextureImage& t, vec2 uv) {
   if (t.empty()) return vec4(1.f);
   const int w = t.width, h = t.height;
-  auto texel = [&t](int x, int y) { return t.texel(x, y); };
   if (t.lookup == Texture::Lookup::course) {
     // Course convention: texel centres on whole numbers, indices clamped.
     float x = uv.x * w, y = (1.f - uv.y) * h;
-    if (!std::isfinite(x) || !std::isfinite(y)) return texel(0, 0);
+    if (!std::isfinite(x) || !std::isfinite(y)) return t.texel(0, 0);
     float fx = std::floor(x), fy = std::floor(y);
     float ax = x - fx, ay = y - fy;
     // Clamp in float first: uv far outside [0,1] must not overflow the int cast.
     int ix = int(std::clamp(fx, -1.f, float(w))), iy = int(std::clamp(fy, -1.f, float(h)));
-    auto at = [&](int i, int j) { return texel(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1)); };
+    auto at = [&](int i, int j) { return t.texel(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1)); };
     return (1 - ax) * (1 - ay) * at(ix, iy) + ax * (1 - ay) * at(ix + 1, iy) +
            (1 - ax) * ay * at(ix, iy + 1) + ax * ay * at(ix + 1, iy + 1);
   }
   float x = uv.x * w - 0.5f, y = (1.f - uv.y) * h - 0.5f;
-  if (!std::isfinite(x) || !std::isfinite(y)) return texel(0, 0);
+  if (!std::isfinite(x) || !std::isfinite(y)) return t.texel(0, 0);
   // Keep the integer conversion in range; wrapping makes far values equivalent.
   x = std::fmod(x, float(2 * w)); y = std::fmod(y, float(2 * h));
   if (t.filter == Texture::Filter::nearest) {
     int ix = int(std::floor(x + 0.5f)), iy = int(std::floor(y + 0.5f));
-    return texel(wrap_index(ix, w, t.wrap_u), wrap_index(iy, h, t.wrap_v));
+    return t.texel(wrap_index(ix, w, t.wrap_u), wrap_index(iy, h, t.wrap_v));
   }
   float fx = std::floor(x), fy = std::floor(y);
   float ax = x - fx, ay = y - fy;
   int ix = int(fx), iy = int(fy);
   int x0 = wrap_index(ix, w, t.wrap_u), x1 = wrap_index(ix + 1, w, t.wrap_u);
   int y0 = wrap_index(iy, h, t.wrap_v), y1 = wrap_index(iy + 1, h, t.wrap_v);
-  return (1 - ax) * (1 - ay) * texel(x0, y0) + ax * (1 - ay) * texel(x1, y0) +
-         (1 - ax) * ay * texel(x0, y1) + ax * ay * texel(x1, y1);
+  return (1 - ax) * (1 - ay) * t.texel(x0, y0) + ax * (1 - ay) * t.texel(x1, y0) +
+         (1 - ax) * ay * t.texel(x0, y1) + ax * ay * t.texel(x1, y1);
 }
 
 }  // namespace rayform
