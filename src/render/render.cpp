@@ -88,7 +88,7 @@ struct Tracer {
       LightSample ls = sample_light(l, sp.position);
       if (o.shadows && blocked(sp, l, ls)) continue;
       if constexpr (Specular) c += phong_light(m, k, sp.normal, d, ls);
-      else c += std::max(0.f, glm::dot(ls.to_light, sp.normal)) * ls.color * k;
+      else c += diffuse_light(k, sp.normal, ls);
     }
     if constexpr (Specular) {
       if (depth < o.bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth);

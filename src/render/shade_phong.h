@@ -58,9 +58,14 @@ inline vec4 surface_albedo(const PreparedScene& p, const Material& m, const Surf
   return vec4(vec3(k) * sp.color, k.a);
 }
 
+// Diffuse term of one light.
+inline vec3 diffuse_light(vec3 k, vec3 n, const LightSample& ls) {
+  return std::max(0.f, glm::dot(ls.to_light, n)) * ls.color * k;
+}
+
 // Phong terms of one light (diffuse + specular), for view direction d (unit).
 inline vec3 phong_light(const Material& m, vec3 k, vec3 n, vec3 d, const LightSample& ls) {
-  vec3 c = std::max(0.f, glm::dot(ls.to_light, n)) * ls.color * k;
+  vec3 c = diffuse_light(k, n, ls);
   if (m.specular != vec3(0.f)) {
     vec3 r = d - 2.f * glm::dot(d, n) * n;
     float lr = glm::dot(ls.to_light, r);
