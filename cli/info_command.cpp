@@ -19,6 +19,15 @@ void add_info_command(CLI::App& app) {
     if (loaded.format == SceneFormat::course_txt)
       std::cout << "format:      course .txt, dialect " << (loaded.dialect == CourseDialect::v2019 ? "2019" : "2012") << "\n";
     std::cout << format_scene_stats(scene_stats(loaded.scene));
+    if (!loaded.extensions.empty()) {
+      std::cout << "extensions:\n";
+      for (const ExtensionUse& e : loaded.extensions) {
+        const char* how = e.support == ExtensionUse::Support::read           ? "read"
+                          : e.support == ExtensionUse::Support::approximated ? "approximated"
+                                                                             : "ignored";
+        std::cout << "  " << e.name << ": " << how << (e.detail.empty() ? "" : " (" + e.detail + ")") << "\n";
+      }
+    }
   });
 }
 

@@ -25,6 +25,7 @@ struct LoadedScene {
   SceneFormat format = SceneFormat::course_txt;
   CourseDialect dialect = CourseDialect::v2012;  // course scenes: the dialect used
   std::vector<std::string> warnings;
+  std::vector<ExtensionUse> extensions;  // glTF: the extensions the file names, and how each was used
 };
 
 // Throws rayform::Error for an unknown extension or a bad file.

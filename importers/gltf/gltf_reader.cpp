@@ -1,6 +1,11 @@
 #include "gltf/gltf_reader.h"
 
-#include "gltf/gltf_writer.h"
+#include "gltf/gltf_accessors.h"
+#include "gltf/gltf_compression.h"
+#include "gltf/gltf_extras.h"
+#include "gltf/gltf_images.h"
+#include "gltf/gltf_material.h"
+#include "gltf/gltf_messages.h"
 #include "scene/error.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
@@ -18,25 +23,12 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <memory>
 #include <sstream>
+#include <tuple>
 
 namespace rayform {
 namespace fs = std::filesystem;
-
-UvTransform gltf_uv_transform_to_scene(vec2 offset, float rotation, vec2 scale) {
-  // glTF: M(x) = o + R(r) S x with R(r) = [[cos r, sin r], [-sin r, cos r]]
-  // (rows; the matrix the shader applies, and the one under which the
-  // KHR_texture_transform sample model's "Correct" markers line up).
-  // Scene uvs are F(x) = (x.u, 1 - x.v) of glTF's, and the sampler reads
-  // v = 1 at the top, so the stored transform is M' = F M F:
-  //   M'(x) = D R(r) S D x + D (R(r) S e + o) + e,  D = diag(1, -1), e = (0, 1)
-  // and D R(r) D = R(-r), S D = D S; R(r) S e = (sin r s.y, cos r s.y).
-  UvTransform t;
-  t.scale = scale;
-  t.rotation = -rotation;
-  t.offset = vec2(offset.x + std::sin(rotation) * scale.y, 1.f - offset.y - std::cos(rotation) * scale.y);
-  return t;
-}
 
 namespace {
 
@@ -44,129 +36,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // ---- small helpers ----------------------------------------------------------
 
-std::string trim(const std::string& s) {
-  size_t b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  size_t e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
-// tinygltf's multi-line messages as one line.
-std::string one_line(const std::string& s) {
-  std::istringstream in(s);
-  std::string line, out;
-  while (std::getline(in, line)) {
-    line = trim(line);
-    if (line.empty()) continue;
-    out += (out.empty() ? "" : "; ") + line;
-  }
-  return out;
-}
-
-std::string idx(const char* array, long i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
-
-const char* type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-  }
-  return "unknown type";
-}
-
-const char* component_name(int ct) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-  }
-  return "unknown component type";
-}
-
-int component_size(int ct) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-  }
-  return 0;
-}
-
-int type_components(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-  }
-  return 0;
-}
-
-// One component as float; normalised integers map to [0, 1] or [-1, 1].
-float read_component(const unsigned char* p, int ct, bool normalized) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float f;
-      std::memcpy(&f, p, 4);
-      return f;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.f : float(p[0]);
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      int8_t v;
-      std::memcpy(&v, p, 1);
-      return normalized ? std::max(v / 127.f, -1.f) : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? v / 65535.f : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? std::max(v / 32767.f, -1.f) : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return float(v);
-    }
-  }
-  return 0.f;
-}
-
-uint32_t read_index(const unsigned char* p, int ct) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-  }
-  return 0;
-}
-
-// a + b <= limit without overflow.
-bool fits(uint64_t a, uint64_t b, uint64_t limit) { return a <= limit && b <= limit - a; }
+std::string idx(const char* array, long i) { return gltf_path(array, i); }
 
 std::string percent_decode(const std::string& s) {
   std::string out;
@@ -183,6 +53,77 @@ std::string percent_decode(const std::string& s) {
 }
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+// ---- EXT_meshopt_compression fallback buffers ----------------------------------
+
+// The glTF JSON of `bytes` (a .gltf, or a .glb's JSON chunk), where it lies.
+struct JsonChunk {
+  size_t offset = 0, length = 0;
+};
+bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chunk) {
+  if (!glb) {
+    *chunk = JsonChunk{0, bytes.size()};
+    return true;
+  }
+  constexpr size_t header = 12, chunk_header = 8;
+  if (bytes.size() < header + chunk_header) return false;
+  uint32_t length = 0, type = 0;
+  std::memcpy(&length, bytes.data() + header, 4);
+  std::memcpy(&type, bytes.data() + header + 4, 4);
+  constexpr uint32_t json_type = 0x4E4F534A;  // "JSON"
+  if (type != json_type || length > bytes.size() - header - chunk_header) return false;
+  *chunk = JsonChunk{header + chunk_header, length};
+  return true;
+}
+
+// A buffer that EXT_meshopt_compression marks as a fallback may have no data
+// (no uri in a .gltf; in a .glb, no part of the BIN chunk), which tinygltf
+// refuses. Such buffers get one byte of data instead: every bufferView that
+// uses them is compressed, and gltf_accessors.cpp reads the decoded bytes.
+// Returns false (bytes untouched) when no buffer needed it.
+bool give_fallback_buffers_data(std::vector<unsigned char>& bytes, bool glb) {
+  JsonChunk chunk;
+  if (!find_json(bytes, glb, &chunk)) return false;
+  const char* text = reinterpret_cast<const char*>(bytes.data() + chunk.offset);
+  if (std::string_view(text, chunk.length).find("EXT_meshopt_compression") == std::string_view::npos) return false;
+  nlohmann::json j = nlohmann::json::parse(text, text + chunk.length, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("buffers") || !j["buffers"].is_array()) return false;
+  bool changed = false;
+  for (size_t i = 0; i < j["buffers"].size(); ++i) {
+    nlohmann::json& b = j["buffers"][i];
+    if (!b.is_object() || b.contains("uri") || (glb && i == 0)) continue;
+    const nlohmann::json* ext = b.contains("extensions") && b["extensions"].is_object() &&
+                                        b["extensions"].contains("EXT_meshopt_compression")
+                                    ? &b["extensions"]["EXT_meshopt_compression"]
+                                    : nullptr;
+    if (!ext || !ext->is_object() || !ext->contains("fallback") || (*ext)["fallback"] != true) continue;
+    b["uri"] = "data:application/octet-stream;base64,AA==";  // one zero byte
+    b["byteLength"] = 1;
+    changed = true;
+  }
+  if (!changed) return false;
+  std::string json = j.dump();
+  if (!glb) {
+    bytes.assign(json.begin(), json.end());
+    return true;
+  }
+  while (json.size() % 4 != 0) json += ' ';
+  std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 12);
+  const uint32_t json_length = uint32_t(json.size());
+  const unsigned char* type = bytes.data() + 16;
+  out.insert(out.end(), reinterpret_cast<const unsigned char*>(&json_length),
+             reinterpret_cast<const unsigned char*>(&json_length) + 4);
+  out.insert(out.end(), type, type + 4);
+  out.insert(out.end(), json.begin(), json.end());
+  // The chunks after the JSON one (the BIN chunk), as they were; the JSON
+  // chunk's end is padded to 4 bytes in a valid file.
+  size_t rest = chunk.offset + ((chunk.length + 3) / 4) * 4;
+  if (rest < bytes.size()) out.insert(out.end(), bytes.begin() + long(rest), bytes.end());
+  const uint32_t total = uint32_t(out.size());
+  std::memcpy(out.data() + 8, &total, 4);
+  bytes = std::move(out);
+  return true;
+}
 
 // ---- tinygltf callbacks -------------------------------------------------------
 
@@ -216,64 +157,21 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
   return false;
 }
 
-struct ImageContext {
-  const tinygltf::Model* model = nullptr;
-  std::vector<std::string> warnings;
-};
-
-// Decodes an image to RGBA8 with tinygltf's own loader, after checking the
-// byte range tinygltf takes from a bufferView (it does not). An image that
-// cannot be decoded is a warning: the asset still loads, untextured there.
-bool load_image(tinygltf::Image* image, const int image_idx, std::string* err, std::string* warn, int, int,
-                const unsigned char* bytes, int size, void* user) {
-  ImageContext* ctx = static_cast<ImageContext*>(user);
-  std::string where = idx("images", image_idx);
-  if (image->bufferView >= 0) {
-    const tinygltf::Model& m = *ctx->model;
-    // tinygltf checked both indices before calling.
-    const tinygltf::BufferView& bv = m.bufferViews[size_t(image->bufferView)];
-    const tinygltf::Buffer& buf = m.buffers[size_t(bv.buffer)];
-    if (!fits(bv.byteOffset, bv.byteLength, buf.data.size())) {
-      if (err)
-        *err += where + ": " + idx("bufferViews", image->bufferView) + " (offset " + std::to_string(bv.byteOffset) +
-                ", length " + std::to_string(bv.byteLength) + ") lies past the end of " + idx("buffers", bv.buffer) +
-                " (" + std::to_string(buf.data.size()) + " bytes)";
-      return false;
-    }
-  }
-  if (bytes == nullptr || size <= 0) {
-    ctx->warnings.push_back(where + ": no image data; textures using it are dropped");
-    return true;
-  }
-  std::string e, w;
-  if (!tinygltf::LoadImageData(image, image_idx, &e, &w, 0, 0, bytes, size, nullptr)) {
-    ctx->warnings.push_back(where + (image->uri.empty() || is_data_uri(image->uri) ? "" : " ('" + image->uri + "')") +
-                            ": cannot decode (" + one_line(e) + "); textures using it are dropped");
-    image->image.clear();
-    image->width = image->height = -1;
-    return true;
-  }
-  if (warn && !w.empty()) *warn += w;
-  if (image->bits == 16) {  // keep the high byte: the Scene holds 8-bit texels
-    std::vector<unsigned char> eight(image->image.size() / 2);
-    for (size_t i = 0; i < eight.size(); ++i) {
-      uint16_t v;
-      std::memcpy(&v, &image->image[2 * i], 2);
-      eight[i] = static_cast<unsigned char>(v >> 8);
-    }
-    image->image = std::move(eight);
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  }
-  return true;
-}
-
 // ---- the reader ---------------------------------------------------------------
 
-// Extensions whose data this reader uses. Any other in extensionsRequired is an error.
+// Extensions whose data this reader uses (fully or approximately). Any other
+// in extensionsRequired is an error; any other in extensionsUsed is ignored
+// and said so.
 const std::set<std::string>& supported_extensions() {
-  static const std::set<std::string> s = {"KHR_texture_transform", "KHR_lights_punctual",
-                                          "KHR_materials_emissive_strength"};
+  static const std::set<std::string> s = {
+      "KHR_texture_transform",          "KHR_lights_punctual",           "KHR_materials_emissive_strength",
+      "KHR_draco_mesh_compression",     "EXT_meshopt_compression",       "KHR_mesh_quantization",
+      "EXT_texture_webp",               "KHR_texture_basisu",            "EXT_mesh_gpu_instancing",
+      "KHR_materials_ior",              "KHR_materials_specular",        "KHR_materials_unlit",
+      "KHR_materials_transmission",     "KHR_materials_clearcoat",       "KHR_materials_pbrSpecularGlossiness",
+      "KHR_materials_sheen",            "KHR_materials_volume",          "KHR_materials_iridescence",
+      "KHR_materials_anisotropy",       "KHR_materials_dispersion",      "KHR_materials_variants",
+      "KHR_materials_diffuse_transmission"};
   return s;
 }
 
@@ -285,14 +183,13 @@ struct Primitive {
 class GltfSceneBuilder {
  public:
   GltfSceneBuilder(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings)
-      : path_(path), options_(options), warnings_(warnings) {}
+      : path_(path), options_(options), warnings_(warnings), accessors_(model_, path) {}
 
-  Scene build() {
+  Scene build(std::vector<ExtensionUse>* extensions) {
     load();
     check_asset();
     scene_.source_path = path_;
-    meshes_.resize(model_.meshes.size());
-    mesh_done_.assign(model_.meshes.size(), 0);
+    extras_primitives_.resize(model_.meshes.size());
     materials_.assign(model_.materials.size(), invalid);
     textures_.assign(model_.textures.size(), -2);
     nodes_.assign(model_.nodes.size(), invalid);
@@ -306,6 +203,8 @@ class GltfSceneBuilder {
     root.kind = Node::Kind::group;
     root.name = fs::path(path_).stem().string();
     for (const auto& [node, ref] : root_nodes()) root.children.push_back(convert_node(node, ref, mat4(1.f)));
+    // Skinned meshes, posed in world space (see convert_node).
+    root.children.insert(root.children.end(), world_space_shapes_.begin(), world_space_shapes_.end());
     scene_.nodes.push_back(std::move(root));
     scene_.root = int(scene_.nodes.size()) - 1;
 
@@ -315,8 +214,9 @@ class GltfSceneBuilder {
       warn("materials use " + list + ", which the Phong shader does not use; ignored");
     }
     if (!model_.animations.empty()) warn("animations are ignored: the scene is read in its static pose");
-    if (!model_.skins.empty()) warn("skins are ignored: skinned meshes are drawn in their bind pose");
     apply_rayform_extras();
+    report_extensions();
+    if (extensions) *extensions = std::move(extensions_);
     return std::move(scene_);
   }
 
@@ -351,16 +251,18 @@ class GltfSceneBuilder {
         fail("not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
     }
 
+    give_fallback_buffers_data(bytes, glb);
+
     FsContext fsctx;
     fsctx.base = fs::path(path_).parent_path().string();
     if (fsctx.base.empty()) fsctx.base = ".";
     tinygltf::FsCallbacks callbacks{&fs_file_exists, &fs_expand, &fs_read, &fs_write, &fsctx};
-    ImageContext images;
+    GltfImageContext images;
     images.model = &model_;
 
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(callbacks);
-    loader.SetImageLoader(&load_image, &images);
+    loader.SetImageLoader(&gltf_load_image, &images);
     std::string err, warn_text;
     bool ok = glb ? loader.LoadBinaryFromMemory(&model_, &err, &warn_text, bytes.data(), unsigned(bytes.size()),
                                                 fsctx.base)
@@ -368,10 +270,11 @@ class GltfSceneBuilder {
                                                unsigned(bytes.size()), fsctx.base);
     if (!ok) diagnose_load_failure(bytes, glb, err);
     for (const std::string& w : images.warnings) warn(w);
+    ktx2_images_.insert(images.ktx2_images.begin(), images.ktx2_images.end());
     std::istringstream wl(warn_text);
     std::string l;
     while (std::getline(wl, l)) {
-      l = trim(l);
+      l = gltf_one_line(l);
       if (l.empty()) continue;
       // Missing image files: tinygltf says "File not found : x.png" then
       // "Failed to load external 'uri' for image[0] ...": say it once, plainly.
@@ -386,7 +289,7 @@ class GltfSceneBuilder {
 
   // Turns tinygltf's message into one that names the element at fault.
   [[noreturn]] void diagnose_load_failure(const std::vector<unsigned char>& bytes, bool glb, const std::string& err) {
-    std::string e = one_line(err);
+    std::string e = gltf_one_line(err);
     if (glb && (e.find("Invalid glTF binary") != std::string::npos || e.find("Too short") != std::string::npos ||
                 e.find("Chunk") != std::string::npos || e.find("Invalid magic") != std::string::npos))
       fail("not a valid binary glTF (GLB): " + e);
@@ -442,13 +345,38 @@ class GltfSceneBuilder {
       const std::string& ext = model_.extensionsRequired[i];
       if (!supported_extensions().count(ext))
         fail(idx("extensionsRequired", long(i)) + ": extension '" + ext +
-             "' is required by the file but not supported (supported: KHR_texture_transform, KHR_lights_punctual, "
-             "KHR_materials_emissive_strength)");
+             "' is required by the file but not supported (rayform info lists what a file uses; docs/assets.md "
+             "what is supported)");
     }
-    std::string unused;
-    for (const std::string& ext : model_.extensionsUsed)
-      if (!supported_extensions().count(ext)) unused += (unused.empty() ? "" : ", ") + ext;
-    if (!unused.empty()) warn("extensions ignored: " + unused);
+  }
+
+  // The extensions the file names, with how they were used: those recorded
+  // while reading keep their entry; the rest of the supported ones were read
+  // as they are; unsupported ones are ignored. One warning lists what was
+  // approximated or ignored.
+  void report_extensions() {
+    using Support = ExtensionUse::Support;
+    for (const std::string& ext : model_.extensionsUsed) {
+      bool seen = std::any_of(extensions_.begin(), extensions_.end(), [&](const ExtensionUse& u) { return u.name == ext; });
+      if (seen) continue;
+      if (supported_extensions().count(ext)) extensions_.push_back({ext, Support::read, ""});
+      else extensions_.push_back({ext, Support::ignored, "not supported"});
+    }
+    std::string approximated, ignored;
+    for (const ExtensionUse& u : extensions_) {
+      std::string& list = u.support == Support::approximated ? approximated : ignored;
+      if (u.support == Support::read) continue;
+      list += (list.empty() ? "" : "; ") + u.name + (u.detail.empty() ? "" : " (" + u.detail + ")");
+    }
+    if (!approximated.empty()) warn("extensions approximated: " + approximated);
+    if (!ignored.empty()) warn("extensions ignored: " + ignored);
+  }
+
+  void use_extension(const std::string& name, ExtensionUse::Support support = ExtensionUse::Support::read,
+                     const std::string& detail = "") {
+    for (ExtensionUse& u : extensions_)
+      if (u.name == name) return;
+    extensions_.push_back({name, support, detail});
   }
 
   // The nodes to start from, with how the file names them.
@@ -540,14 +468,31 @@ class GltfSceneBuilder {
       if (n.mesh < 0 || size_t(n.mesh) >= model_.meshes.size())
         fail(where + ".mesh: mesh " + std::to_string(n.mesh) + " does not exist (the file has " +
              std::to_string(model_.meshes.size()) + " meshes)");
-      for (const Primitive& p : convert_mesh(n.mesh)) {
-        Node shape;
-        shape.kind = Node::Kind::shape;
-        shape.name = scene_.meshes[size_t(p.mesh)].name;
-        shape.shape_kind = ShapeKind::mesh;
-        shape.shape = p.mesh;
-        shape.material = p.material;
-        out.children.push_back(add_node(std::move(shape)));
+      const tinygltf::Mesh& gm = model_.meshes[size_t(n.mesh)];
+      // Morph weights: the node's, else the mesh's, else 0.
+      std::vector<float> weights;
+      for (double w : n.weights.empty() ? gm.weights : n.weights) {
+        if (!std::isfinite(w)) fail(where + (n.weights.empty() ? idx(".meshes", n.mesh) : std::string()) + ".weights: not finite");
+        weights.push_back(float(w));
+      }
+      if (std::all_of(weights.begin(), weights.end(), [](float w) { return w == 0.f; })) weights.clear();
+      if (n.skin != -1) {
+        // A skinned mesh is posed by its joints alone, in world space; the
+        // node's own transform does not apply to it (the specification).
+        const std::vector<int>& shapes = mesh_shapes(n.mesh, weights, i);
+        world_space_shapes_.insert(world_space_shapes_.end(), shapes.begin(), shapes.end());
+      } else if (auto inst = n.extensions.find("EXT_mesh_gpu_instancing"); inst != n.extensions.end()) {
+        for (const mat4& m : instance_matrices(inst->second, where + ".extensions.EXT_mesh_gpu_instancing")) {
+          Node copy;
+          copy.kind = Node::Kind::transform;
+          copy.local = m;
+          copy.children = mesh_shapes(n.mesh, weights, invalid);  // one mesh, shared by every instance
+          out.children.push_back(add_node(std::move(copy)));
+        }
+        use_extension("EXT_mesh_gpu_instancing");
+      } else {
+        const std::vector<int>& shapes = mesh_shapes(n.mesh, weights, invalid);
+        out.children.insert(out.children.end(), shapes.begin(), shapes.end());
       }
     }
     if (n.camera != -1) place_camera(n.camera, where, world);
@@ -564,6 +509,57 @@ class GltfSceneBuilder {
     int index = add_node(std::move(out));
     nodes_[size_t(i)] = index;
     return index;
+  }
+
+  // EXT_mesh_gpu_instancing: one matrix T R S per instance (each of the three
+  // optional), applied before the node's transform.
+  std::vector<mat4> instance_matrices(const tinygltf::Value& e, const std::string& ew) {
+    if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject())
+      fail(ew + ": expected an object with \"attributes\"");
+    const tinygltf::Value& attributes = e.Get("attributes");
+    struct Attr {
+      const char* name;
+      int type;
+      uint32_t formats;
+      GltfAccessors::Floats values;
+      bool present = false;
+    };
+    Attr attrs[] = {{"TRANSLATION", TINYGLTF_TYPE_VEC3, format_float, {}},
+                    {"ROTATION", TINYGLTF_TYPE_VEC4, formats_rotation, {}},
+                    {"SCALE", TINYGLTF_TYPE_VEC3, format_float, {}}};
+    size_t count = 0;
+    const char* first = nullptr;
+    for (Attr& a : attrs) {
+      if (!attributes.Has(a.name)) continue;
+      const std::string aw = ew + ".attributes." + a.name;
+      const tinygltf::Value& index = attributes.Get(a.name);
+      if (!index.IsNumber()) fail(aw + ": expected an accessor index");
+      a.values = accessors_.read_floats(index.GetNumberAsInt(), aw, {a.type}, a.formats);
+      a.present = true;
+      for (float v : a.values.values)
+        if (!std::isfinite(v)) fail(aw + ": a value is not finite");
+      if (first && a.values.count != count)
+        fail(aw + ": " + std::to_string(a.values.count) + " instances, but " + first + " has " + std::to_string(count));
+      count = a.values.count;
+      first = a.name;
+    }
+    if (!first) fail(ew + ".attributes: expected TRANSLATION, ROTATION or SCALE");
+    std::vector<mat4> out(count, mat4(1.f));
+    for (size_t i = 0; i < count; ++i) {
+      mat4& m = out[i];
+      if (attrs[0].present) m = glm::translate(m, vec3(attrs[0].values.values[3 * i], attrs[0].values.values[3 * i + 1],
+                                                       attrs[0].values.values[3 * i + 2]));
+      if (attrs[1].present) {
+        const float* q = &attrs[1].values.values[4 * i];
+        glm::quat r(q[3], q[0], q[1], q[2]);  // w, x, y, z
+        const float len = glm::length(r);
+        if (!(len > 0.f)) fail(ew + ".attributes.ROTATION: instance " + std::to_string(i) + "'s quaternion is zero");
+        m = m * glm::mat4_cast(r / len);
+      }
+      if (attrs[2].present) m = glm::scale(m, vec3(attrs[2].values.values[3 * i], attrs[2].values.values[3 * i + 1],
+                                                   attrs[2].values.values[3 * i + 2]));
+    }
+    return out;
   }
 
   // ---- cameras and lights ------------------------------------------------------
@@ -654,28 +650,6 @@ class GltfSceneBuilder {
 
   // ---- materials and textures -----------------------------------------------
 
-  // glTF metallic/roughness to the course's Phong (K, Ks, n), a documented
-  // approximation (the renderer has no environment to reflect):
-  //   K  = baseColorFactor x baseColorTexture texel: the diffuse colour, also
-  //        for metals, which would otherwise render black;
-  //   Ks = F0 (1 - roughness)^2, F0 = mix(0.04, baseColorFactor.rgb, metallic):
-  //        Schlick's reflectance at normal incidence, faded out on rough
-  //        surfaces whose (unnormalised) Phong lobe would be a broad glow;
-  //   n  = (2 / alpha^2 - 2) / 4, alpha = roughness^2, clamped to [1, 1024]:
-  //        the Blinn-Phong exponent of a microfacet lobe of width alpha
-  //        (Walter et al. 2007), divided by 4 because the shader's lobe is
-  //        (L.R)^n and the angle between L and R is twice that between N and H.
-  static void pbr_to_phong(vec3 base, float metallic, float roughness, Material& m) {
-    metallic = std::clamp(metallic, 0.f, 1.f);
-    roughness = std::clamp(roughness, 0.f, 1.f);
-    vec3 f0 = glm::mix(vec3(0.04f), base, metallic);
-    float smooth = 1.f - roughness;
-    m.specular = f0 * smooth * smooth;
-    float alpha2 = roughness * roughness * roughness * roughness;
-    float n = alpha2 > 0.f ? (2.f / alpha2 - 2.f) / 4.f : 1024.f;
-    m.shininess = std::clamp(n, 1.f, 1024.f);
-  }
-
   struct TextureRef {
     int texture = invalid;  // Scene texture
     int texcoord = 0;       // TEXCOORD_n
@@ -739,15 +713,13 @@ class GltfSceneBuilder {
     textures_[size_t(ti)] = invalid;
     const tinygltf::Texture& t = model_.textures[size_t(ti)];
     const std::string tw = idx("textures", ti);
-    if (t.source < 0) {
-      warn(tw + ": no image this reader can use (source missing; image extensions are not supported); untextured");
+    const int source = texture_source(t, tw);
+    if (source < 0) {
+      warn(tw + ": no image this reader can use (source missing); untextured");
       return invalid;
     }
-    if (size_t(t.source) >= model_.images.size())
-      fail(tw + ".source: image " + std::to_string(t.source) + " does not exist (the file has " +
-           std::to_string(model_.images.size()) + " images)");
-    const tinygltf::Image& img = model_.images[size_t(t.source)];
-    const std::string iw = idx("images", t.source);
+    const tinygltf::Image& img = model_.images[size_t(source)];
+    const std::string iw = idx("images", source);
     if (img.image.empty() || img.width <= 0 || img.height <= 0) {
       warn(iw + (img.uri.empty() || is_data_uri(img.uri) ? "" : " ('" + img.uri + "')") +
            ": not loaded; materials using it are untextured");
@@ -786,6 +758,48 @@ class GltfSceneBuilder {
     return textures_[size_t(ti)];
   }
 
+  // The image texture `t` (named `tw`) is drawn with: EXT_texture_webp's
+  // source when it decoded, else the core `source`; KHR_texture_basisu's
+  // KTX2 image cannot be decoded, so its core `source` stands in for it, and
+  // without one the texture is an error. -1: no source at all.
+  int texture_source(const tinygltf::Texture& t, const std::string& tw) {
+    auto image_index = [&](int i, const std::string& where) {
+      if (i < 0 || size_t(i) >= model_.images.size())
+        fail(where + ": image " + std::to_string(i) + " does not exist (the file has " +
+             std::to_string(model_.images.size()) + " images)");
+      return i;
+    };
+    auto extension_source = [&](const char* name) -> int {
+      auto it = t.extensions.find(name);
+      if (it == t.extensions.end()) return -2;
+      const std::string ew = tw + ".extensions." + name;
+      if (!it->second.IsObject() || !it->second.Has("source") || !it->second.Get("source").IsNumber())
+        fail(ew + ": expected an object with a \"source\" image index");
+      return image_index(it->second.Get("source").GetNumberAsInt(), ew + ".source");
+    };
+    if (t.source >= 0) image_index(t.source, tw + ".source");
+    const int webp = extension_source("EXT_texture_webp");
+    if (webp >= 0) {
+      if (!model_.images[size_t(webp)].image.empty()) {
+        use_extension("EXT_texture_webp");
+        return webp;
+      }
+      if (t.source < 0)
+        fail(tw + ".extensions.EXT_texture_webp: " + idx("images", webp) +
+             " does not decode as WebP and the texture has no PNG/JPEG fallback source");
+    }
+    const int basisu = extension_source("KHR_texture_basisu");
+    if (basisu >= 0 || (t.source >= 0 && ktx2_images_.count(t.source))) {
+      if (t.source < 0 || ktx2_images_.count(t.source))
+        fail(tw + (basisu >= 0 ? ".extensions.KHR_texture_basisu" : ".source") +
+             ": KTX2 / Basis Universal images cannot be decoded (no decoder is available) and the texture has no "
+             "PNG/JPEG fallback source");
+      use_extension("KHR_texture_basisu", ExtensionUse::Support::approximated,
+                    "KTX2 images not decoded: their PNG/JPEG fallback sources are drawn");
+    }
+    return t.source;
+  }
+
   Texture::Wrap wrap(int mode, const std::string& where) {
     switch (mode) {
       case TINYGLTF_TEXTURE_WRAP_REPEAT: return Texture::Wrap::repeat;
@@ -804,7 +818,7 @@ class GltfSceneBuilder {
         m.name = "default";
         m.texture_modulates = true;
         m.double_sided = false;
-        pbr_to_phong(vec3(1.f), 1.f, 1.f, m);  // base colour 1, metallic 1, roughness 1
+        pbr_to_phong(vec3(1.f), 1.f, 1.f, vec3(gltf_dielectric_f0), m);  // base colour 1, metallic 1, roughness 1
         scene_.materials.push_back(m);
         material_texcoord_.push_back(0);
         default_material_ = int(scene_.materials.size()) - 1;
@@ -821,14 +835,8 @@ class GltfSceneBuilder {
     Material m;
     m.name = gm.name.empty() ? mw : gm.name;
     m.texture_modulates = true;
-    if (pbr.baseColorFactor.size() != 4)
-      fail(mw + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers, found " +
-           std::to_string(pbr.baseColorFactor.size()));
-    vec4 base(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
-    if (!is_finite(vec3(base)) || !std::isfinite(base.a))
-      fail(mw + ".pbrMetallicRoughness.baseColorFactor: not finite");
-    m.diffuse = vec3(base);
-    pbr_to_phong(vec3(base), float(pbr.metallicFactor), float(pbr.roughnessFactor), m);
+    gltf_material_to_phong(gm, path_, mw, m, extensions_);
+    const float base_alpha = float(pbr.baseColorFactor[3]);
     int texcoord = 0;
     if (pbr.baseColorTexture.index >= 0 || pbr.baseColorTexture.index < -1) {
       TextureRef r = texture_ref(pbr.baseColorTexture, mw + ".pbrMetallicRoughness.baseColorTexture");
@@ -836,20 +844,26 @@ class GltfSceneBuilder {
       texcoord = r.texcoord;
       if (r.texture != invalid) m.uv_transform = r.transform;
     }
-    if (gm.emissiveFactor.size() == 3) m.emission = vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
-    else if (!gm.emissiveFactor.empty())
-      fail(mw + ".emissiveFactor: expected 3 numbers, found " + std::to_string(gm.emissiveFactor.size()));
-    if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
-      const tinygltf::Value& v = it->second;
-      if (v.IsObject() && v.Has("emissiveStrength") && v.Get("emissiveStrength").IsNumber())
-        m.emission *= float(v.Get("emissiveStrength").GetNumberAsDouble());
+    // The older specular-glossiness workflow's diffuse texture plays the base colour's part.
+    if (auto sg = gm.extensions.find("KHR_materials_pbrSpecularGlossiness"); sg != gm.extensions.end()) {
+      const std::string sw = mw + ".extensions.KHR_materials_pbrSpecularGlossiness.diffuseTexture";
+      if (sg->second.IsObject() && sg->second.Has("diffuseTexture")) {
+        const tinygltf::Value& dt = sg->second.Get("diffuseTexture");
+        if (!dt.IsObject() || !dt.Has("index") || !dt.Get("index").IsNumber())
+          fail(sw + ": expected an object with an \"index\"");
+        tinygltf::TextureInfo info;
+        info.index = dt.Get("index").GetNumberAsInt();
+        if (dt.Has("texCoord") && dt.Get("texCoord").IsNumber()) info.texCoord = dt.Get("texCoord").GetNumberAsInt();
+        TextureRef r = texture_ref(info, sw);
+        m.diffuse_texture = r.texture;
+        texcoord = r.texcoord;
+      }
     }
-    if (!is_finite(m.emission)) fail(mw + ".emissiveFactor: not finite");
     // Cut-outs: the shader compares the texel's alpha with alpha_cutoff, while
     // glTF compares baseColorFactor.a x texel alpha with alphaCutoff; fold the
     // factor into the threshold. (Without a texture a uniform alpha below the
     // cutoff cannot be expressed: such a material stays opaque.)
-    auto cutoff_for = [&](float c) { return base.a > 0.f ? c / base.a : 2.f; };
+    auto cutoff_for = [&](float c) { return base_alpha > 0.f ? c / base_alpha : 2.f; };
     if (gm.alphaMode == "MASK") {
       m.alpha_cutoff = cutoff_for(float(gm.alphaCutoff));
     } else if (gm.alphaMode == "BLEND") {
@@ -870,160 +884,151 @@ class GltfSceneBuilder {
     return materials_[size_t(gi)];
   }
 
-  // ---- accessors ----------------------------------------------------------------
-
-  const tinygltf::Accessor& accessor(int a, const std::string& where) {
-    if (a < 0 || size_t(a) >= model_.accessors.size())
-      fail(where + ": accessor " + std::to_string(a) + " does not exist (the file has " +
-           std::to_string(model_.accessors.size()) + " accessors)");
-    return model_.accessors[size_t(a)];
-  }
-
-  // The bytes of bufferView `v`, checked against its buffer.
-  const unsigned char* view_bytes(int v, const std::string& where, size_t* length, size_t* stride) {
-    if (v < 0 || size_t(v) >= model_.bufferViews.size())
-      fail(where + ": bufferView " + std::to_string(v) + " does not exist (the file has " +
-           std::to_string(model_.bufferViews.size()) + " bufferViews)");
-    const tinygltf::BufferView& bv = model_.bufferViews[size_t(v)];
-    const std::string vw = idx("bufferViews", v);
-    if (bv.buffer < 0 || size_t(bv.buffer) >= model_.buffers.size())
-      fail(vw + ".buffer: buffer " + std::to_string(bv.buffer) + " does not exist (the file has " +
-           std::to_string(model_.buffers.size()) + " buffers)");
-    const tinygltf::Buffer& buf = model_.buffers[size_t(bv.buffer)];
-    if (!fits(bv.byteOffset, bv.byteLength, buf.data.size()))
-      fail(vw + ": bytes " + std::to_string(bv.byteOffset) + " to " + std::to_string(bv.byteOffset + bv.byteLength) +
-           " lie past the end of " + idx("buffers", bv.buffer) + " (" + std::to_string(buf.data.size()) + " bytes)");
-    *length = bv.byteLength;
-    *stride = bv.byteStride;
-    return buf.data.data() + bv.byteOffset;
-  }
-
-  // Reads accessor `a` as count x components floats after checking its type
-  // against `types` and its component type (FLOAT, or normalised unsigned
-  // integers where `normalized_ok`). Applies sparse substitution.
-  std::vector<float> read_floats(int a, const std::string& where, std::initializer_list<int> types, bool normalized_ok,
-                                 int* components_out, size_t* count_out) {
-    const tinygltf::Accessor& acc = accessor(a, where);
-    const std::string aw = where + " (" + idx("accessors", a) + ")";
-    bool type_ok = std::find(types.begin(), types.end(), acc.type) != types.end();
-    bool ct_ok = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                 (normalized_ok && acc.normalized &&
-                  (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                   acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    if (!type_ok || !ct_ok) {
-      std::string want;
-      for (int t : types) want += std::string(want.empty() ? "" : " or ") + type_name(t);
-      want += normalized_ok ? " of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT" : " of FLOAT";
-      fail(aw + ": accessor is " + type_name(acc.type) + " of " + component_name(acc.componentType) +
-           (acc.normalized ? " (normalized)" : "") + ", expected " + want);
-    }
-    const int nc = type_components(acc.type);
-    std::vector<float> out;
-    read_elements(acc, aw, nc, [&](size_t count) { out.assign(count * size_t(nc), 0.f); },
-                  [&](size_t i, const unsigned char* p) {
-                    const int cs = component_size(acc.componentType);
-                    for (int c = 0; c < nc; ++c)
-                      out[i * size_t(nc) + size_t(c)] = read_component(p + c * cs, acc.componentType, acc.normalized);
-                  });
-    *components_out = nc;
-    *count_out = acc.count;
-    return out;
-  }
-
-  std::vector<uint32_t> read_indices(int a, const std::string& where) {
-    const tinygltf::Accessor& acc = accessor(a, where);
-    const std::string aw = where + " (" + idx("accessors", a) + ")";
-    if (acc.type != TINYGLTF_TYPE_SCALAR ||
-        (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-      fail(aw + ": accessor is " + type_name(acc.type) + " of " + component_name(acc.componentType) +
-           ", expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
-    std::vector<uint32_t> out;
-    read_elements(acc, aw, 1, [&](size_t count) { out.assign(count, 0u); },
-                  [&](size_t i, const unsigned char* p) { out[i] = read_index(p, acc.componentType); });
-    return out;
-  }
-
-  // The element walk shared by both readers: bounds of bufferView, stride and
-  // buffer checked, then sparse values substituted.
-  template <class Alloc, class Put>
-  void read_elements(const tinygltf::Accessor& acc, const std::string& aw, int nc, Alloc&& alloc, Put&& put) {
-    const int cs = component_size(acc.componentType);
-    const size_t elem = size_t(cs) * size_t(nc);
-    // Without a bufferView the elements are zeros (sparse may then set some);
-    // bound the count so a lying file cannot make us allocate without limit.
-    constexpr size_t max_elements = size_t(1) << 28;
-    if (acc.count > max_elements) fail(aw + ": count " + std::to_string(acc.count) + " is implausibly large");
-    if (acc.bufferView == -1) {
-      alloc(acc.count);
-    } else {
-      size_t length = 0, stride = 0;
-      const unsigned char* base = view_bytes(acc.bufferView, aw + ".bufferView", &length, &stride);
-      if (stride != 0 && stride < elem)
-        fail(aw + ": " + idx("bufferViews", acc.bufferView) + ".byteStride " + std::to_string(stride) +
-             " is smaller than one element (" + std::to_string(elem) + " bytes)");
-      if (stride == 0) stride = elem;
-      if (acc.count > 0) {
-        // offset + stride (count - 1) + elem <= length, without overflow
-        uint64_t last = uint64_t(stride) * uint64_t(acc.count - 1);
-        if (!fits(acc.byteOffset, last, length) || !fits(acc.byteOffset + last, elem, length))
-          fail(aw + ": " + std::to_string(acc.count) + " elements of " + std::to_string(elem) + " bytes (stride " +
-               std::to_string(stride) + ") from byte " + std::to_string(acc.byteOffset) + " run past the end of " +
-               idx("bufferViews", acc.bufferView) + " (" + std::to_string(length) + " bytes)");
-      }
-      alloc(acc.count);
-      for (size_t i = 0; i < acc.count; ++i) put(i, base + acc.byteOffset + i * stride);
-    }
-    if (!acc.sparse.isSparse) return;
-    const std::string sw = aw + ".sparse";
-    const int sc = acc.sparse.count;
-    if (sc < 1 || size_t(sc) > acc.count)
-      fail(sw + ".count: " + std::to_string(sc) + " is not between 1 and the accessor's count " +
-           std::to_string(acc.count));
-    const int ict = acc.sparse.indices.componentType;
-    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(sw + ".indices.componentType: " + std::to_string(ict) + " is not UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
-    if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0) fail(sw + ": negative byteOffset");
-    size_t ilen = 0, istride = 0, vlen = 0, vstride = 0;
-    const unsigned char* ib = view_bytes(acc.sparse.indices.bufferView, sw + ".indices.bufferView", &ilen, &istride);
-    const unsigned char* vb = view_bytes(acc.sparse.values.bufferView, sw + ".values.bufferView", &vlen, &vstride);
-    const size_t isize = size_t(component_size(ict));
-    if (!fits(size_t(acc.sparse.indices.byteOffset), isize * size_t(sc), ilen))
-      fail(sw + ".indices: " + std::to_string(sc) + " indices run past the end of " +
-           idx("bufferViews", acc.sparse.indices.bufferView) + " (" + std::to_string(ilen) + " bytes)");
-    if (!fits(size_t(acc.sparse.values.byteOffset), elem * size_t(sc), vlen))
-      fail(sw + ".values: " + std::to_string(sc) + " values run past the end of " +
-           idx("bufferViews", acc.sparse.values.bufferView) + " (" + std::to_string(vlen) + " bytes)");
-    ib += acc.sparse.indices.byteOffset;
-    vb += acc.sparse.values.byteOffset;
-    for (size_t j = 0; j < size_t(sc); ++j) {
-      uint32_t target = read_index(ib + j * isize, ict);
-      if (target >= acc.count)
-        fail(sw + ".indices[" + std::to_string(j) + "]: " + std::to_string(target) + " is past the accessor's " +
-             std::to_string(acc.count) + " elements");
-      put(target, vb + j * elem);
-    }
-  }
-
   // ---- meshes --------------------------------------------------------------------
 
-  const std::vector<Primitive>& convert_mesh(int mi) {
-    if (mesh_done_[size_t(mi)]) return meshes_[size_t(mi)];
-    mesh_done_[size_t(mi)] = 1;
+  // A Draco-compressed primitive, decoded: attribute name -> index into mesh.attributes.
+  struct DracoPrimitive {
+    DracoMesh mesh;
+    std::map<std::string, int> slots;
+  };
+
+  // KHR_draco_mesh_compression of `prim`, decoded; nullptr when it has none.
+  std::unique_ptr<DracoPrimitive> decode_draco_primitive(const tinygltf::Primitive& prim, const std::string& where) {
+    auto it = prim.extensions.find("KHR_draco_mesh_compression");
+    if (it == prim.extensions.end()) return nullptr;
+    const std::string dw = where + ".extensions.KHR_draco_mesh_compression";
+    const tinygltf::Value& e = it->second;
+    if (!e.IsObject() || !e.Has("bufferView") || !e.Get("bufferView").IsNumber() || !e.Has("attributes") ||
+        !e.Get("attributes").IsObject())
+      fail(dw + ": expected an object with a \"bufferView\" and \"attributes\"");
+    const GltfAccessors::View bytes = accessors_.view(e.Get("bufferView").GetNumberAsInt(), dw + ".bufferView");
+    auto out = std::make_unique<DracoPrimitive>();
+    std::vector<int> ids;
+    const tinygltf::Value& attributes = e.Get("attributes");
+    for (const std::string& name : attributes.Keys()) {
+      const tinygltf::Value& id = attributes.Get(name);
+      if (!id.IsNumber() || id.GetNumberAsInt() < 0) fail(dw + ".attributes." + name + ": expected a Draco attribute id");
+      if (!prim.attributes.count(name))
+        fail(dw + ".attributes." + name + ": the primitive has no accessor for this attribute");
+      out->slots[name] = int(ids.size());
+      ids.push_back(id.GetNumberAsInt());
+    }
+    out->mesh = decode_draco(bytes.data, bytes.length, ids, path_ + ": " + dw);
+    use_extension("KHR_draco_mesh_compression");
+    return out;
+  }
+
+  // Attribute `name` of `prim` as floats: from the Draco mesh when it holds
+  // the attribute, else from its accessor. Types and formats checked on the
+  // accessor either way.
+  GltfAccessors::Floats attribute(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& name,
+                                  const std::string& where, std::initializer_list<int> types, uint32_t formats) {
+    const int a = prim.attributes.at(name);
+    const std::string aw = where + ".attributes." + name;
+    if (!draco || !draco->slots.count(name)) return accessors_.read_floats(a, aw, types, formats);
+    const tinygltf::Accessor& acc = accessors_.check_format(a, aw, types, formats);
+    const DracoAttribute& d = draco->mesh.attributes[size_t(draco->slots.at(name))];
+    GltfAccessors::Floats f;
+    f.components = gltf_type_components(acc.type);
+    f.count = draco->mesh.vertex_count;
+    if (d.components != f.components)
+      fail(aw + ": the Draco attribute has " + std::to_string(d.components) + " components, the accessor " +
+           std::to_string(f.components));
+    if (acc.count != f.count)
+      fail(aw + " (" + idx("accessors", a) + "): the Draco stream decodes to " + std::to_string(f.count) +
+           " vertices but the accessor's count is " + std::to_string(acc.count));
+    f.values = d.values;
+    if (acc.normalized)
+      for (float& v : f.values) v = gltf_normalize_integer(v, acc.componentType);
+    return f;
+  }
+
+  // How node `skinned_node` poses its skin: per joint, world(joint) x inverseBindMatrix.
+  std::vector<mat4> skin_joint_matrices(int skinned_node) {
+    const tinygltf::Node& n = model_.nodes[size_t(skinned_node)];
+    const std::string sw = idx("skins", n.skin);
+    if (n.skin < 0 || size_t(n.skin) >= model_.skins.size())
+      fail(idx("nodes", skinned_node) + ".skin: skin " + std::to_string(n.skin) + " does not exist (the file has " +
+           std::to_string(model_.skins.size()) + " skins)");
+    const tinygltf::Skin& skin = model_.skins[size_t(n.skin)];
+    std::vector<mat4> inverse_bind(skin.joints.size(), mat4(1.f));
+    if (skin.inverseBindMatrices >= 0) {
+      GltfAccessors::Floats ibm = accessors_.read_floats(skin.inverseBindMatrices, sw + ".inverseBindMatrices",
+                                                         {TINYGLTF_TYPE_MAT4}, format_float);
+      if (ibm.count < skin.joints.size())
+        fail(sw + ".inverseBindMatrices: " + std::to_string(ibm.count) + " matrices for " +
+             std::to_string(skin.joints.size()) + " joints");
+      for (size_t j = 0; j < skin.joints.size(); ++j)
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) inverse_bind[j][c][r] = ibm.values[16 * j + size_t(4 * c + r)];
+    }
+    std::vector<mat4> out(skin.joints.size());
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      const int joint = skin.joints[j];
+      if (joint < 0 || size_t(joint) >= model_.nodes.size())
+        fail(sw + ".joints[" + std::to_string(j) + "]: node " + std::to_string(joint) + " does not exist");
+      out[j] = node_world(joint) * inverse_bind[j];
+      if (!is_finite(vec3(out[j][0])) || !is_finite(vec3(out[j][1])) || !is_finite(vec3(out[j][2])) ||
+          !is_finite(vec3(out[j][3])))
+        fail(sw + ".joints[" + std::to_string(j) + "]: the joint's matrix is not finite");
+    }
+    return out;
+  }
+
+  // Node i's world matrix through its (first) parents, whether or not it is in
+  // the scene read; joints of skins need it.
+  mat4 node_world(int i) {
+    if (parents_.empty()) {
+      parents_.assign(model_.nodes.size(), invalid);
+      for (size_t p = 0; p < model_.nodes.size(); ++p)
+        for (int c : model_.nodes[p].children)
+          if (c >= 0 && size_t(c) < parents_.size() && parents_[size_t(c)] == invalid) parents_[size_t(c)] = int(p);
+    }
+    mat4 world(1.f);
+    int depth = 0;
+    for (int k = i; k != invalid; k = parents_[size_t(k)]) {
+      if (++depth > max_node_depth)
+        fail(idx("nodes", i) + ": its chain of parents is longer than " + std::to_string(max_node_depth) +
+             " (recursive node graph?)");
+      world = node_matrix(model_.nodes[size_t(k)], idx("nodes", k)) * world;
+    }
+    return world;
+  }
+
+  // The Scene meshes of glTF mesh `mi` at morph `weights`, posed by the skin
+  // of node `skinned_node` (invalid: not skinned), as shape nodes; converted
+  // once per combination.
+  const std::vector<int>& mesh_shapes(int mi, const std::vector<float>& weights, int skinned_node) {
+    MeshKey key{mi, skinned_node, weights};
+    auto it = mesh_shapes_.find(key);
+    if (it != mesh_shapes_.end()) return it->second;
     const tinygltf::Mesh& gm = model_.meshes[size_t(mi)];
+    std::vector<mat4> joints;
+    if (skinned_node != invalid) joints = skin_joint_matrices(skinned_node);
+    std::vector<int> shapes, meshes;
     for (size_t j = 0; j < gm.primitives.size(); ++j) {
       const std::string where = idx("meshes", mi) + "." + idx("primitives", long(j));
       std::string name = gm.name.empty() ? idx("meshes", mi) : gm.name;
       if (gm.primitives.size() > 1) name += "#" + std::to_string(j);
-      Primitive p = convert_primitive(gm.primitives[j], where, name);
-      if (p.mesh != invalid) meshes_[size_t(mi)].push_back(p);
+      Primitive p = convert_primitive(gm.primitives[j], where, name, weights, skinned_node != invalid ? &joints : nullptr);
+      if (p.mesh == invalid) continue;
+      meshes.push_back(p.mesh);
+      Node shape;
+      shape.kind = Node::Kind::shape;
+      shape.name = scene_.meshes[size_t(p.mesh)].name;
+      shape.shape_kind = ShapeKind::mesh;
+      shape.shape = p.mesh;
+      shape.material = p.material;
+      shapes.push_back(add_node(std::move(shape)));
     }
-    return meshes_[size_t(mi)];
+    // The extras of a primitive describe its first, unposed conversion.
+    if (extras_primitives_[size_t(mi)].empty() && meshes.size() == gm.primitives.size() && skinned_node == invalid)
+      extras_primitives_[size_t(mi)] = meshes;
+    return mesh_shapes_.emplace(std::move(key), std::move(shapes)).first->second;
   }
 
-  Primitive convert_primitive(const tinygltf::Primitive& prim, const std::string& where, const std::string& name) {
+  Primitive convert_primitive(const tinygltf::Primitive& prim, const std::string& where, const std::string& name,
+                              const std::vector<float>& weights, const std::vector<mat4>* joints) {
     int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     switch (mode) {
       case TINYGLTF_MODE_TRIANGLES:
@@ -1037,81 +1042,82 @@ class GltfSceneBuilder {
         return {};
       default: fail(where + ".mode: " + std::to_string(mode) + " is not a primitive mode (0 to 6)");
     }
-    if (!prim.targets.empty()) warn(where + ": morph targets are ignored");
     const int mat = material(prim.material, where + ".material");
-    auto pos_it = prim.attributes.find("POSITION");
-    if (pos_it == prim.attributes.end()) {
+    if (!prim.attributes.count("POSITION")) {
       warn(where + ": no POSITION attribute; primitive skipped");
       return {};
     }
+    const std::unique_ptr<DracoPrimitive> draco = decode_draco_primitive(prim, where);
     Mesh mesh;
     mesh.name = name;
     mesh.source_path = path_;
-    int nc = 0;
-    size_t nv = 0;
-    {
-      const std::string aw = where + ".attributes.POSITION";
-      std::vector<float> v = read_floats(pos_it->second, aw, {TINYGLTF_TYPE_VEC3}, false, &nc, &nv);
-      mesh.positions.resize(nv);
-      for (size_t i = 0; i < nv; ++i) {
-        mesh.positions[i] = vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-        if (!is_finite(mesh.positions[i]))
-          fail(aw + ": vertex " + std::to_string(i) + " is not finite (" + std::to_string(v[3 * i]) + ", " +
-               std::to_string(v[3 * i + 1]) + ", " + std::to_string(v[3 * i + 2]) + ")");
-      }
-    }
+    const GltfAccessors::Floats positions =
+        attribute(prim, draco.get(), "POSITION", where, {TINYGLTF_TYPE_VEC3}, formats_position);
+    const size_t nv = positions.count;
+    mesh.positions.resize(nv);
+    for (size_t i = 0; i < nv; ++i) mesh.positions[i] = vec3(positions.values[3 * i], positions.values[3 * i + 1], positions.values[3 * i + 2]);
     auto same_count = [&](size_t n, const std::string& aw) {
-      if (n != nv)
-        fail(aw + ": " + std::to_string(n) + " elements, but POSITION has " + std::to_string(nv));
+      if (n != nv) fail(aw + ": " + std::to_string(n) + " elements, but POSITION has " + std::to_string(nv));
     };
-    if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-      const std::string aw = where + ".attributes.NORMAL";
-      size_t n = 0;
-      std::vector<float> v = read_floats(it->second, aw, {TINYGLTF_TYPE_VEC3}, false, &nc, &n);
-      same_count(n, aw);
-      mesh.normals.resize(nv);
-      for (size_t i = 0; i < nv; ++i) {
-        vec3 nn(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-        float len = glm::length(nn);
-        mesh.normals[i] = len > 0.f && std::isfinite(len) ? nn / len : vec3(0.f);
+    auto read_vec3s = [&](const GltfAccessors::Floats& f, std::vector<vec3>& out) {
+      out.resize(nv);
+      const size_t nc = size_t(f.components);
+      for (size_t i = 0; i < nv; ++i) out[i] = vec3(f.values[nc * i], f.values[nc * i + 1], f.values[nc * i + 2]);
+    };
+    if (prim.attributes.count("NORMAL")) {
+      GltfAccessors::Floats f = attribute(prim, draco.get(), "NORMAL", where, {TINYGLTF_TYPE_VEC3}, formats_normal);
+      same_count(f.count, where + ".attributes.NORMAL");
+      read_vec3s(f, mesh.normals);
+    }
+    apply_morph_targets(prim, where, weights, mesh);
+    if (joints) apply_skin(prim, draco.get(), where, *joints, mesh);
+    for (size_t i = 0; i < nv; ++i)
+      if (!is_finite(mesh.positions[i])) {
+        const vec3& p = mesh.positions[i];
+        fail(where + ".attributes.POSITION: vertex " + std::to_string(i) + " is not finite (" + std::to_string(p.x) +
+             ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
       }
+    for (vec3& n : mesh.normals) {
+      const float len = glm::length(n);
+      n = len > 0.f && std::isfinite(len) ? n / len : vec3(0.f);
     }
     // Without NORMAL, normals stay empty: the renderer's face normals are the
     // flat normals the specification asks for.
     const int texcoord = material_texcoord_[size_t(mat)];
     const std::string uv_name = "TEXCOORD_" + std::to_string(texcoord);
-    if (auto it = prim.attributes.find(uv_name); it != prim.attributes.end()) {
-      const std::string aw = where + ".attributes." + uv_name;
-      size_t n = 0;
-      std::vector<float> v = read_floats(it->second, aw, {TINYGLTF_TYPE_VEC2}, true, &nc, &n);
-      same_count(n, aw);
+    if (prim.attributes.count(uv_name)) {
+      GltfAccessors::Floats f = attribute(prim, draco.get(), uv_name, where, {TINYGLTF_TYPE_VEC2}, formats_texcoord);
+      same_count(f.count, where + ".attributes." + uv_name);
       mesh.uvs.resize(nv);
-      for (size_t i = 0; i < nv; ++i) mesh.uvs[i] = vec2(v[2 * i], 1.f - v[2 * i + 1]);  // v = 1 at the top
+      for (size_t i = 0; i < nv; ++i) mesh.uvs[i] = vec2(f.values[2 * i], 1.f - f.values[2 * i + 1]);  // v = 1 at the top
     } else if (scene_.materials[size_t(mat)].diffuse_texture != invalid) {
       warn(where + ": the material's texture uses " + uv_name + " but the primitive has none; drawn untextured");
     }
-    if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
-      const std::string aw = where + ".attributes.COLOR_0";
-      size_t n = 0;
-      std::vector<float> v = read_floats(it->second, aw, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true, &nc, &n);
-      same_count(n, aw);
-      mesh.colors.resize(nv);
-      for (size_t i = 0; i < nv; ++i)  // linear already; alpha is not used
-        mesh.colors[i] = vec3(v[size_t(nc) * i], v[size_t(nc) * i + 1], v[size_t(nc) * i + 2]);
+    if (prim.attributes.count("COLOR_0")) {
+      GltfAccessors::Floats f = attribute(prim, draco.get(), "COLOR_0", where,
+                                          {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, formats_color);
+      same_count(f.count, where + ".attributes.COLOR_0");
+      read_vec3s(f, mesh.colors);  // linear already; alpha is not used
     }
 
     std::vector<uint32_t> order;
-    if (prim.indices != -1) {
-      const std::string iw = where + ".indices";
-      order = read_indices(prim.indices, iw);
-      for (size_t k = 0; k < order.size(); ++k)
-        if (order[k] >= nv)
-          fail(iw + ": index " + std::to_string(order[k]) + " (element " + std::to_string(k) +
-               ") is out of range (the primitive has " + std::to_string(nv) + " vertices)");
+    const std::string iw = where + ".indices";
+    if (draco) {
+      order = draco->mesh.indices;
+      if (prim.indices != -1 && accessors_.accessor(prim.indices, iw).count != order.size())
+        fail(iw + " (" + idx("accessors", prim.indices) + "): the Draco stream decodes to " +
+             std::to_string(order.size()) + " indices but the accessor's count is " +
+             std::to_string(accessors_.accessor(prim.indices, iw).count));
+    } else if (prim.indices != -1) {
+      order = accessors_.read_indices(prim.indices, iw);
     } else {
       order.resize(nv);
       for (size_t i = 0; i < nv; ++i) order[i] = uint32_t(i);
     }
+    for (size_t k = 0; k < order.size(); ++k)
+      if (order[k] >= nv)
+        fail(iw + ": index " + std::to_string(order[k]) + " (element " + std::to_string(k) +
+             ") is out of range (the primitive has " + std::to_string(nv) + " vertices)");
     mesh.indices = triangulate(order, mode, where);
     if (mesh.indices.empty()) {
       warn(where + ": no triangles; primitive skipped");
@@ -1119,6 +1125,64 @@ class GltfSceneBuilder {
     }
     scene_.meshes.push_back(std::move(mesh));
     return Primitive{int(scene_.meshes.size()) - 1, mat};
+  }
+
+  // Morph targets at `weights`: POSITION and NORMAL displaced by the
+  // weighted sum of the targets' deltas (other target attributes are not used).
+  void apply_morph_targets(const tinygltf::Primitive& prim, const std::string& where, const std::vector<float>& weights,
+                           Mesh& mesh) {
+    const size_t nv = mesh.positions.size();
+    for (size_t t = 0; t < prim.targets.size(); ++t) {
+      const float w = t < weights.size() ? weights[t] : 0.f;
+      if (w == 0.f) continue;
+      const std::string tw = where + "." + idx("targets", long(t));
+      for (const char* name : {"POSITION", "NORMAL"}) {
+        auto it = prim.targets[t].find(name);
+        if (it == prim.targets[t].end()) continue;
+        std::vector<vec3>& values = std::string(name) == "POSITION" ? mesh.positions : mesh.normals;
+        if (values.empty()) continue;  // a NORMAL delta without normals
+        const std::string aw = tw + "." + name;
+        GltfAccessors::Floats d = accessors_.read_floats(it->second, aw, {TINYGLTF_TYPE_VEC3}, formats_morph_delta);
+        if (d.count != nv) fail(aw + ": " + std::to_string(d.count) + " elements, but POSITION has " + std::to_string(nv));
+        for (size_t i = 0; i < nv; ++i) values[i] += w * vec3(d.values[3 * i], d.values[3 * i + 1], d.values[3 * i + 2]);
+      }
+    }
+  }
+
+  // Linear blend skinning into world space: p' = sum_k w_k J_{j_k} p over
+  // the sets JOINTS_n / WEIGHTS_n (weights renormalised to sum 1); normals by
+  // the blended matrix's linear part (renormalised later).
+  void apply_skin(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
+                  const std::vector<mat4>& joints, Mesh& mesh) {
+    const size_t nv = mesh.positions.size();
+    std::vector<mat4> blend(nv, mat4(0.f));
+    std::vector<float> total(nv, 0.f);
+    for (int set = 0;; ++set) {
+      const std::string jn = "JOINTS_" + std::to_string(set), wn = "WEIGHTS_" + std::to_string(set);
+      if (!prim.attributes.count(jn) || !prim.attributes.count(wn)) break;
+      GltfAccessors::Floats j = attribute(prim, draco, jn, where, {TINYGLTF_TYPE_VEC4}, formats_joints);
+      GltfAccessors::Floats w = attribute(prim, draco, wn, where, {TINYGLTF_TYPE_VEC4}, formats_weights);
+      if (j.count != nv || w.count != nv)
+        fail(where + ".attributes." + jn + ": " + std::to_string(std::min(j.count, w.count)) +
+             " elements, but POSITION has " + std::to_string(nv));
+      for (size_t i = 0; i < nv; ++i)
+        for (size_t k = 0; k < 4; ++k) {
+          const float weight = w.values[4 * i + k];
+          if (weight == 0.f) continue;
+          const size_t joint = size_t(j.values[4 * i + k]);
+          if (joint >= joints.size())
+            fail(where + ".attributes." + jn + ": vertex " + std::to_string(i) + " names joint " +
+                 std::to_string(joint) + " but the skin has " + std::to_string(joints.size()));
+          blend[i] += weight * joints[joint];
+          total[i] += weight;
+        }
+    }
+    for (size_t i = 0; i < nv; ++i) {
+      if (!(total[i] > 0.f)) continue;  // no influence: left in place
+      const mat4 m = blend[i] / total[i];
+      mesh.positions[i] = transform_point(m, mesh.positions[i]);
+      if (!mesh.normals.empty()) mesh.normals[i] = glm::transpose(glm::inverse(mat3(m))) * mesh.normals[i];
+    }
   }
 
   // Triangle lists per the specification's vertex order:
@@ -1149,14 +1213,11 @@ class GltfSceneBuilder {
   // ---- rayform's own extras (written by gltf_writer.cpp) -----------------------
   // What glTF cannot say (analytic spheres and planes, Phong values, the course
   // camera, ...) travels in "rayform" extras; apply_gltf_rayform_extras
-  // (gltf_writer.h) checks each against the file's data and restores it.
+  // (gltf_extras.h) checks each against the file's data and restores it.
   void apply_rayform_extras() {
     GltfSceneMapping map;
     map.scene = options_.scene >= 0 ? options_.scene : std::max(model_.defaultScene, 0);
-    map.mesh_primitives.resize(model_.meshes.size());
-    for (size_t i = 0; i < model_.meshes.size(); ++i)
-      if (mesh_done_[i] && meshes_[i].size() == model_.meshes[i].primitives.size())
-        for (const Primitive& p : meshes_[i]) map.mesh_primitives[i].push_back(p.mesh);
+    map.mesh_primitives = extras_primitives_;
     map.materials = materials_;
     map.texture = [this](int ti) { return texture(ti, idx("textures", ti)); };
     std::vector<std::string> extras_warnings;
@@ -1169,9 +1230,16 @@ class GltfSceneBuilder {
   std::vector<std::string>* warnings_;
   std::set<std::string> seen_warnings_;
   tinygltf::Model model_;
+  GltfAccessors accessors_;                     // reads model_'s accessors
   Scene scene_;
-  std::vector<std::vector<Primitive>> meshes_;  // per glTF mesh
-  std::vector<uint8_t> mesh_done_;
+  // Shape nodes per (glTF mesh, skinned node or invalid, morph weights).
+  using MeshKey = std::tuple<int, int, std::vector<float>>;
+  std::map<MeshKey, std::vector<int>> mesh_shapes_;
+  std::vector<std::vector<int>> extras_primitives_;  // per glTF mesh: its first conversion's Scene meshes
+  std::vector<int> world_space_shapes_;              // shape nodes of skinned meshes (posed in world space)
+  std::vector<int> parents_;                         // per glTF node: its first parent (node_world)
+  std::set<int> ktx2_images_;                        // images that are KTX2 (not decoded)
+  std::vector<ExtensionUse> extensions_;
   std::vector<int> materials_;                  // per glTF material: Scene material
   std::vector<int> material_texcoord_;          // per Scene material: TEXCOORD set of its texture
   std::vector<int> textures_;                   // per glTF texture: Scene texture; -2 not yet converted
@@ -1183,8 +1251,9 @@ class GltfSceneBuilder {
 
 }  // namespace
 
-Scene read_gltf_scene(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings) {
-  return GltfSceneBuilder(path, options, warnings).build();
+Scene read_gltf_scene(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings,
+                      std::vector<ExtensionUse>* extensions) {
+  return GltfSceneBuilder(path, options, warnings).build(extensions);
 }
 
 }  // namespace rayform

@@ -5,18 +5,27 @@
 // What the Scene gets:
 // - the node tree of one scene (the default one) as transform nodes (matrix
 //   or T*R*S), under a root group named after the file; one shape node per
-//   mesh primitive; a glTF mesh used by several nodes is shared (instanced);
+//   mesh primitive; a glTF mesh used by several nodes is shared (one Scene
+//   mesh, so one BVH), and EXT_mesh_gpu_instancing instances are transform
+//   nodes over those same shape nodes, never copies;
 // - primitives in TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN (points and lines
 //   are skipped with a warning), indexed by u8/u16/u32 or not at all;
-//   byteStride, sparse accessors and normalised integer uvs/colours read;
+//   byteStride, sparse accessors, normalised and (KHR_mesh_quantization)
+//   integer attributes, KHR_draco_mesh_compression and
+//   EXT_meshopt_compression (gltf_accessors.h, gltf_compression.h);
 //   no NORMAL: Mesh::normals stays empty, so the renderer shades with face
 //   normals (the flat normals the specification asks for);
+// - morph targets at the node's (else the mesh's) default weights; skinned
+//   meshes in the pose their joints' node transforms give, in world space
+//   (linear blend skinning; the skinned node's own transform is ignored, as
+//   the specification says); animations are not played;
 // - TEXCOORD_n (the one the base colour texture uses) with v flipped to the
 //   renderer's convention (v = 1 is the top row: v_scene = 1 - v_gltf);
 //   COLOR_0 as vertex colours;
-// - materials: see the comment on the metallic/roughness conversion in
-//   gltf_reader.cpp; base colour textures from tinygltf's decoded RGBA8
-//   pixels (sRGB, modulating, standard lookup, sampler wrap and filter);
+// - materials: gltf_material.h (metallic-roughness and KHR_materials_* onto
+//   Phong); base colour textures from tinygltf's decoded RGBA8 pixels (sRGB,
+//   modulating, standard lookup, sampler wrap and filter), WebP through
+//   libwebp (gltf_images.h), KTX2 only through a PNG/JPEG fallback source;
 //   KHR_texture_transform; alphaMode MASK; doubleSided; emissive;
 // - cameras and KHR_lights_punctual lights placed by their nodes' world
 //   transforms.
@@ -24,6 +33,7 @@
 // "box.gltf: meshes[2].primitives[0].indices: index 40 is out of range (the primitive has 24 vertices)".
 #pragma once
 
+#include "gltf/gltf_material.h"
 #include "scene/scene.h"
 
 #include <string>
@@ -36,16 +46,9 @@ struct GltfReadOptions {
 };
 
 // Reads a .gltf or .glb file (the content decides, not the extension).
-// Warnings, if wanted, are appended to `warnings`.
+// Warnings, if wanted, are appended to `warnings`; the extensions the file
+// names, with how each was used, to `extensions`.
 Scene read_gltf_scene(const std::string& path, const GltfReadOptions& options = {},
-                      std::vector<std::string>* warnings = nullptr);
-
-// KHR_texture_transform (uv' = T(offset) R(rotation) S(scale) uv in glTF's uv
-// space, v pointing down the image) as the Material::uv_transform that gives
-// the same texel for the flipped uvs the Scene stores (v_scene = 1 - v_gltf).
-// With F(u, v) = (u, 1 - v) the stored transform is F o M o F: the scale is
-// kept, the rotation changes sign and the offset becomes
-// (o.x + sin(r) s.y, 1 - o.y - cos(r) s.y).
-UvTransform gltf_uv_transform_to_scene(vec2 offset, float rotation, vec2 scale);
+                      std::vector<std::string>* warnings = nullptr, std::vector<ExtensionUse>* extensions = nullptr);
 
 }  // namespace rayform

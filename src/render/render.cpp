@@ -82,6 +82,7 @@ struct Tracer {
 
   vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth) const {
     const Material& m = p.materials[sp.material];
+    if (m.unlit) return k;
     vec3 d = glm::normalize(ray.direction);
     vec3 c = s.background.ambient * k + m.emission;
     for (const Light& l : s.lights) {

@@ -105,6 +105,7 @@ struct Material {
   // Refractive materials keep their normals: inside and outside matter there.
   bool two_sided_lighting = false;
   float refraction_index = 0.f;   // 0: opaque
+  bool unlit = false;             // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
   int bump_texture = invalid;     // parsed and kept (course 2019 `bump`)
 };
 

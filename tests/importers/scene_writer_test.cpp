@@ -4,6 +4,7 @@
 // lights and background, with analytic spheres and planes restored exactly
 // from the glTF extras; what a format cannot hold must be reported.
 #include "gltf/gltf_writer.h"
+#include "gltf/gltf_material.h"
 #include "scene/error.h"
 #include "scene/node_walk.h"
 #include "scene/scene_stats.h"
