@@ -218,8 +218,10 @@ GltfAccessors::View GltfAccessors::view(int v, const std::string& where) {
       filter = e.Get("filter").Get<std::string>();
     }
     const unsigned char* bytes = buffer_bytes(e.Get("buffer").GetNumberAsInt(), offset, length, ew);
-    std::vector<uint8_t> decoded = decode_meshopt(bytes, length, count, stride, parse_meshopt_mode(mode, ew + ".mode"),
-                                                  parse_meshopt_filter(filter, ew + ".filter"), file_ + ": " + ew);
+    const std::string fw = file_ + ": " + ew;
+    std::vector<uint8_t> decoded =
+        decode_meshopt(bytes, length, count, stride, parse_meshopt_mode(mode, fw + ".mode"),
+                       parse_meshopt_filter(filter, fw + ".filter"), fw);
     cached = decoded_views_.emplace(v, std::move(decoded)).first;
   }
   const std::vector<uint8_t>& d = cached->second;

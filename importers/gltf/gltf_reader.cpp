@@ -54,7 +54,7 @@ std::string percent_decode(const std::string& s) {
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
-// ---- EXT_meshopt_compression fallback buffers ----------------------------------
+// ---- JSON that tinygltf refuses -----------------------------------------------
 
 // The glTF JSON of `bytes` (a .gltf, or a .glb's JSON chunk), where it lies.
 struct JsonChunk {
@@ -76,30 +76,58 @@ bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chu
   return true;
 }
 
-// A buffer that EXT_meshopt_compression marks as a fallback may have no data
-// (no uri in a .gltf; in a .glb, no part of the BIN chunk), which tinygltf
-// refuses. Such buffers get one byte of data instead: every bufferView that
-// uses them is compressed, and gltf_accessors.cpp reads the decoded bytes.
-// Returns false (bytes untouched) when no buffer needed it.
-bool give_fallback_buffers_data(std::vector<unsigned char>& bytes, bool glb) {
+// Key under which adapt_json_for_tinygltf keeps a Draco primitive's index
+// accessor (inside the primitive's KHR_draco_mesh_compression object).
+constexpr const char* draco_indices_key = "rayform_indices";
+
+// Two kinds of valid files that tinygltf 2.7 refuses, adapted before it sees them:
+// - a buffer that EXT_meshopt_compression marks as a fallback may have no data
+//   (no uri in a .gltf; in a .glb, no part of the BIN chunk): such buffers get
+//   one byte of data instead; every bufferView that uses them is compressed,
+//   and gltf_accessors.cpp reads the decoded bytes;
+// - a KHR_draco_mesh_compression primitive's index accessor has no bufferView:
+//   the primitive's "indices" moves into its extension object (under
+//   draco_indices_key), where decode_draco_primitive finds it.
+// Returns false (bytes untouched) when the file needed neither.
+bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb) {
   JsonChunk chunk;
   if (!find_json(bytes, glb, &chunk)) return false;
   const char* text = reinterpret_cast<const char*>(bytes.data() + chunk.offset);
-  if (std::string_view(text, chunk.length).find("EXT_meshopt_compression") == std::string_view::npos) return false;
+  const std::string_view view(text, chunk.length);
+  if (view.find("EXT_meshopt_compression") == std::string_view::npos &&
+      view.find("KHR_draco_mesh_compression") == std::string_view::npos)
+    return false;
   nlohmann::json j = nlohmann::json::parse(text, text + chunk.length, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("buffers") || !j["buffers"].is_array()) return false;
+  if (j.is_discarded() || !j.is_object()) return false;
   bool changed = false;
-  for (size_t i = 0; i < j["buffers"].size(); ++i) {
-    nlohmann::json& b = j["buffers"][i];
-    if (!b.is_object() || b.contains("uri") || (glb && i == 0)) continue;
-    const nlohmann::json* ext = b.contains("extensions") && b["extensions"].is_object() &&
-                                        b["extensions"].contains("EXT_meshopt_compression")
-                                    ? &b["extensions"]["EXT_meshopt_compression"]
-                                    : nullptr;
-    if (!ext || !ext->is_object() || !ext->contains("fallback") || (*ext)["fallback"] != true) continue;
-    b["uri"] = "data:application/octet-stream;base64,AA==";  // one zero byte
-    b["byteLength"] = 1;
-    changed = true;
+  auto extension = [](nlohmann::json& object, const char* name) -> nlohmann::json* {
+    if (!object.is_object() || !object.contains("extensions") || !object["extensions"].is_object() ||
+        !object["extensions"].contains(name) || !object["extensions"][name].is_object())
+      return nullptr;
+    return &object["extensions"][name];
+  };
+  if (j.contains("buffers") && j["buffers"].is_array()) {
+    for (size_t i = 0; i < j["buffers"].size(); ++i) {
+      nlohmann::json& b = j["buffers"][i];
+      if (!b.is_object() || b.contains("uri") || (glb && i == 0)) continue;
+      const nlohmann::json* ext = extension(b, "EXT_meshopt_compression");
+      if (!ext || !ext->contains("fallback") || (*ext)["fallback"] != true) continue;
+      b["uri"] = "data:application/octet-stream;base64,AA==";  // one zero byte
+      b["byteLength"] = 1;
+      changed = true;
+    }
+  }
+  if (j.contains("meshes") && j["meshes"].is_array()) {
+    for (nlohmann::json& mesh : j["meshes"]) {
+      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+      for (nlohmann::json& prim : mesh["primitives"]) {
+        nlohmann::json* draco = extension(prim, "KHR_draco_mesh_compression");
+        if (!draco || !prim.contains("indices")) continue;
+        (*draco)[draco_indices_key] = prim["indices"];
+        prim.erase("indices");
+        changed = true;
+      }
+    }
   }
   if (!changed) return false;
   std::string json = j.dump();
@@ -251,7 +279,7 @@ class GltfSceneBuilder {
         fail("not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
     }
 
-    give_fallback_buffers_data(bytes, glb);
+    adapt_json_for_tinygltf(bytes, glb);
 
     FsContext fsctx;
     fsctx.base = fs::path(path_).parent_path().string();
@@ -890,6 +918,7 @@ class GltfSceneBuilder {
   struct DracoPrimitive {
     DracoMesh mesh;
     std::map<std::string, int> slots;
+    int indices = -1;  // the primitive's index accessor (adapt_json_for_tinygltf moved it)
   };
 
   // KHR_draco_mesh_compression of `prim`, decoded; nullptr when it has none.
@@ -913,6 +942,8 @@ class GltfSceneBuilder {
       out->slots[name] = int(ids.size());
       ids.push_back(id.GetNumberAsInt());
     }
+    if (e.Has(draco_indices_key) && e.Get(draco_indices_key).IsNumber())
+      out->indices = e.Get(draco_indices_key).GetNumberAsInt();
     out->mesh = decode_draco(bytes.data, bytes.length, ids, path_ + ": " + dw);
     use_extension("KHR_draco_mesh_compression");
     return out;
@@ -1104,10 +1135,11 @@ class GltfSceneBuilder {
     const std::string iw = where + ".indices";
     if (draco) {
       order = draco->mesh.indices;
-      if (prim.indices != -1 && accessors_.accessor(prim.indices, iw).count != order.size())
-        fail(iw + " (" + idx("accessors", prim.indices) + "): the Draco stream decodes to " +
+      const int indices = prim.indices != -1 ? prim.indices : draco->indices;
+      if (indices != -1 && accessors_.accessor(indices, iw).count != order.size())
+        fail(iw + " (" + idx("accessors", indices) + "): the Draco stream decodes to " +
              std::to_string(order.size()) + " indices but the accessor's count is " +
-             std::to_string(accessors_.accessor(prim.indices, iw).count));
+             std::to_string(accessors_.accessor(indices, iw).count));
     } else if (prim.indices != -1) {
       order = accessors_.read_indices(prim.indices, iw);
     } else {
