@@ -18,6 +18,9 @@ SceneStats scene_stats(const Scene& scene) {
   st.lights = scene.lights.size();
   st.cameras = scene.cameras.size();
   for (const Mesh& m : scene.meshes) st.unique_mesh_triangles += m.triangle_count();
+  // Object-space bounds of each mesh, computed once however many instances use it.
+  std::vector<Bounds3> mesh_bounds(scene.meshes.size());
+  std::vector<uint8_t> mesh_bounded(scene.meshes.size(), 0);
   for_each_shape_node(scene, [&](const Node& n, const mat4& m) {
     st.instances++;
     switch (n.shape_kind) {
@@ -38,8 +41,11 @@ SceneStats scene_stats(const Scene& scene) {
         if (n.shape < 0 || n.shape >= int(scene.meshes.size())) break;
         const Mesh& mesh = scene.meshes[n.shape];
         st.mesh_triangles += mesh.triangle_count();
-        Bounds3 b;
-        for (const vec3& v : mesh.positions) b.expand(v);
+        Bounds3& b = mesh_bounds[size_t(n.shape)];
+        if (!mesh_bounded[size_t(n.shape)]) {
+          for (const vec3& v : mesh.positions) b.expand(v);
+          mesh_bounded[size_t(n.shape)] = 1;
+        }
         if (!b.empty()) st.bounds.expand(transform_bounds(m, b));
         break;
       }
