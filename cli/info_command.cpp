@@ -9,7 +9,7 @@ namespace rayform::cli {
 void add_info_command(CLI::App& app) {
   struct Args { std::string scene, dialect; };
   auto a = std::make_shared<Args>();
-  CLI::App* info = app.add_subcommand("info", "Print counts and bounds of a scene");
+  CLI::App* info = app.add_subcommand("info", "Print counts and bounds of a scene, and the glTF extensions it uses");
   info->add_option("scene", a->scene, "Scene file")->required();
   info->add_option("--dialect", a->dialect, "Course dialect (default: detected)")->check(CLI::IsMember({"2012", "2019"}));
   info->callback([a] {
