@@ -61,22 +61,8 @@ if [ ! -d "$assets" ]; then
 fi
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool not found (apt-get install openimageio-tools)"; exit 1; }
 command -v python3 >/dev/null || { echo "FAIL: python3 not found"; exit 1; }
-command -v node >/dev/null || { echo "SKIPPED: node not found (apt-get install nodejs npm)"; exit 77; }
-
-# The node tools: $RAYFORM_NODE_TOOLS, the build folder's node/, ~/.cache/rayform/node,
-# else installed there by scripts/install-node-tools (needs npm and the registry).
-has_tools() { [ -x "$1/node_modules/.bin/gltf-transform" ] && [ -x "$1/node_modules/.bin/gltfpack" ] &&
-              [ -x "$1/node_modules/.bin/obj2gltf" ]; }
-build_dir=$(cd "$(dirname "$RAYFORM_BIN")/.." && pwd)
-tools=""
-for d in ${RAYFORM_NODE_TOOLS:-} "$build_dir/node" "$HOME/.cache/rayform/node"; do
-  has_tools "$d" && { tools=$d; break; }
-done
-if [ -z "$tools" ]; then
-  tools="$HOME/.cache/rayform/node"
-  { "$RAYFORM_SOURCE_DIR/scripts/install-node-tools" "$tools" >/dev/null 2>&1 && has_tools "$tools"; } ||
-    { echo "SKIPPED: gltf-transform/gltfpack/obj2gltf not installed and scripts/install-node-tools failed (offline?)"; exit 77; }
-fi
+find_node_tools node_modules/.bin/gltf-transform node_modules/.bin/gltfpack node_modules/.bin/obj2gltf
+tools=$RAYFORM_NODE_TOOLS
 bin=$tools/node_modules/.bin
 echo "tools: gltf-transform $("$bin/gltf-transform" --version 2>/dev/null | tail -1)," \
      "$("$bin/gltfpack" -v 2>&1 | head -1), obj2gltf $("$bin/obj2gltf" --version 2>/dev/null)"

@@ -9,21 +9,7 @@
 # Skips (77) when node is absent or the validator cannot be installed.
 source "$(dirname "$0")/lib.sh"
 require_shared
-command -v node >/dev/null || { echo "SKIPPED: node not found (apt-get install nodejs npm)"; exit 77; }
-
-# The validator: $RAYFORM_NODE_TOOLS, the build folder's node/, ~/.cache/rayform/node,
-# else installed there by scripts/install-node-tools (needs npm and the registry).
-build_dir=$(cd "$(dirname "$RAYFORM_BIN")/.." && pwd)
-tools=""
-for d in ${RAYFORM_NODE_TOOLS:-} "$build_dir/node" "$HOME/.cache/rayform/node"; do
-  [ -f "$d/node_modules/gltf-validator/package.json" ] && { tools=$d; break; }
-done
-if [ -z "$tools" ]; then
-  tools="$HOME/.cache/rayform/node"
-  "$RAYFORM_SOURCE_DIR/scripts/install-node-tools" "$tools" >/dev/null 2>&1 ||
-    { echo "SKIPPED: gltf-validator not installed and scripts/install-node-tools failed (offline?)"; exit 77; }
-fi
-export RAYFORM_NODE_TOOLS=$tools
+find_node_tools node_modules/gltf-validator/package.json
 
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0; expected=0

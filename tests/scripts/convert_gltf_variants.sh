@@ -15,18 +15,8 @@
 # Skips (77) without node, the node tools or the third-party assets.
 source "$(dirname "$0")/lib.sh"
 require_shared
-command -v node >/dev/null || { echo "SKIPPED: node not found (apt-get install nodejs npm)"; exit 77; }
-build_dir=$(cd "$(dirname "$RAYFORM_BIN")/.." && pwd)
-tools=""
-for d in ${RAYFORM_NODE_TOOLS:-} "$build_dir/node" "$HOME/.cache/rayform/node"; do
-  [ -x "$d/node_modules/.bin/gltfpack" ] && [ -f "$d/node_modules/gltf-validator/package.json" ] && { tools=$d; break; }
-done
-if [ -z "$tools" ]; then
-  tools="$HOME/.cache/rayform/node"
-  "$RAYFORM_SOURCE_DIR/scripts/install-node-tools" "$tools" >/dev/null 2>&1 ||
-    { echo "SKIPPED: node tools not installed and scripts/install-node-tools failed (offline?)"; exit 77; }
-fi
-export RAYFORM_NODE_TOOLS=$tools
+find_node_tools node_modules/.bin/gltf-transform node_modules/.bin/gltfpack node_modules/gltf-validator/package.json
+tools=$RAYFORM_NODE_TOOLS
 bin=$tools/node_modules/.bin
 export VIPS_CONCURRENCY=1 UV_THREADPOOL_SIZE=2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -48,9 +38,10 @@ for m in "${models[@]}"; do
     printf "--look-from %g,%g,%g --look-at %g,%g,%g --up 0,1,0 --fov 45", cx + 1.4 * r, cy + 1.1 * r, cz + 1.9 * r, cx, cy, cz }')
   for ext in obj txt; do  # the plain original's conversions: the references for .obj and .txt
     mkdir -p "$tmp/ref_${name}_$ext"
-    "$RAYFORM_BIN" convert "$m" "$tmp/ref_${name}_$ext/model.$ext" >/dev/null 2>&1 &&
-      render "$tmp/ref_${name}_$ext/model.$ext" "$tmp/ref_${name}_$ext/r" ||
-      { echo "FAIL $name -> .$ext: the plain original does not convert and render"; failed=$((failed + 1)); }
+    if ! "$RAYFORM_BIN" convert "$m" "$tmp/ref_${name}_$ext/model.$ext" >/dev/null 2>&1 ||
+       ! render "$tmp/ref_${name}_$ext/model.$ext" "$tmp/ref_${name}_$ext/r"; then
+      echo "FAIL $name -> .$ext: the plain original does not convert and render"; failed=$((failed + 1))
+    fi
   done
   variants=()
   "$bin/gltf-transform" draco "$m" "$tmp/${name}_draco.glb" >/dev/null 2>&1 && variants+=(draco)

@@ -33,3 +33,24 @@ compare_with_goldens() {
   echo "$((n - bad)) of $n pictures match their golden picture"
   [ "$failn" -eq 0 ] && [ "$rc" -eq 0 ]
 }
+
+# Finds the npm test tools (scripts/install-node-tools): the first of
+# $RAYFORM_NODE_TOOLS, the build folder's node/ and ~/.cache/rayform/node that
+# holds every path given (relative to the folder, e.g.
+# node_modules/.bin/gltfpack), else installs them into the last. Sets and
+# exports RAYFORM_NODE_TOOLS; exits 77 (skipped) without node or when the
+# install fails (offline).
+find_node_tools() {
+  local d p ok build_dir
+  command -v node >/dev/null || { echo "SKIPPED: node not found (apt-get install nodejs npm)"; exit 77; }
+  has_node_tools() { for p in "${@:2}"; do [ -e "$1/$p" ] || return 1; done; }
+  build_dir=$(cd "$(dirname "$RAYFORM_BIN")/.." && pwd)
+  for d in ${RAYFORM_NODE_TOOLS:-} "$build_dir/node" "$HOME/.cache/rayform/node"; do
+    if has_node_tools "$d" "$@"; then export RAYFORM_NODE_TOOLS=$d; return 0; fi
+  done
+  d="$HOME/.cache/rayform/node"
+  ok=0
+  "$RAYFORM_SOURCE_DIR/scripts/install-node-tools" "$d" >/dev/null 2>&1 && has_node_tools "$d" "$@" && ok=1
+  [ $ok = 1 ] || { echo "SKIPPED: node tools ($*) not installed and scripts/install-node-tools failed (offline?)"; exit 77; }
+  export RAYFORM_NODE_TOOLS=$d
+}
