@@ -647,6 +647,10 @@ class GltfBuilder {
       gm.alphaCutoff = nice(std::min(m.alpha_cutoff, 1.f));
     }
     gm.doubleSided = m.double_sided;
+    if (m.unlit) {
+      gm.extensions["KHR_materials_unlit"] = Value(Value::Object{});
+      use_extension("KHR_materials_unlit");
+    }
 
     Value::Object ex;
     ex["phong"] = Value(Value::Object{{"diffuse", vec_value(m.diffuse)},

@@ -5,6 +5,7 @@
 // EXT_mesh_gpu_instancing, morph targets, skins, EXT_texture_webp,
 // KHR_texture_basisu, KHR_materials_*, and the extension report.
 #include "gltf/gltf_reader.h"
+#include "gltf/gltf_writer.h"
 #include "render/prepared_scene.h"
 #include "scene/error.h"
 #include "scene/node_walk.h"
@@ -537,6 +538,20 @@ TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
   EXPECT_EQ(support("KHR_materials_transmission"), int(ExtensionUse::Support::approximated));
   EXPECT_EQ(support("KHR_materials_sheen"), int(ExtensionUse::Support::ignored));
   EXPECT_TRUE(test::any_contains(warnings, "extensions ignored: KHR_materials_sheen"));
+  // Written back as glTF, the mapped materials read the same.
+  const std::string written = (dir_ / "written.glb").string();
+  std::vector<std::string> messages;
+  GltfWriteOptions glb;
+  glb.binary = true;
+  write_gltf_scene(s, written, glb, &messages);
+  std::vector<ExtensionUse> used_again;
+  Scene again = read_gltf_scene(written, {}, nullptr, &used_again);
+  ASSERT_GE(again.materials.size(), 5u);
+  EXPECT_TRUE(again.materials[0].unlit);
+  EXPECT_FALSE(again.materials[1].unlit);
+  EXPECT_EQ(again.materials[1].specular, s.materials[1].specular);
+  EXPECT_FLOAT_EQ(again.materials[2].refraction_index, 1.3f);
+  EXPECT_EQ(again.materials[3].diffuse, s.materials[3].diffuse);
   GltfBuilder bad = b;
   bad.j["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 0.5;
   EXPECT_NE(error(bad).find("materials[1].extensions.KHR_materials_ior.ior: 0.500000 is neither 0 nor a number >= 1"),
