@@ -6,26 +6,34 @@
 
 namespace rayform {
 
-Mesh read_course_mesh(const std::string& path, CourseDialect dialect) {
-  ObjGeometry g = read_obj_geometry(path);
-  // Normals per position index.
-  std::vector<vec3> position_normals(g.positions.size(), vec3(0.f));
-  for (size_t c = 0; c < g.corners.size(); c += 3) {
-    int i0 = g.corners[c].position, i1 = g.corners[c + 1].position, i2 = g.corners[c + 2].position;
-    vec3 n = glm::cross(g.positions[i1] - g.positions[i0], g.positions[i2] - g.positions[i0]);
+std::vector<vec3> course_position_normals(const std::vector<vec3>& positions, const std::vector<uint32_t>& corners,
+                                          CourseDialect dialect) {
+  std::vector<vec3> sum(positions.size(), vec3(0.f));
+  for (size_t c = 0; c + 2 < corners.size(); c += 3) {
+    const uint32_t i0 = corners[c], i1 = corners[c + 1], i2 = corners[c + 2];
+    vec3 n = glm::cross(positions[i1] - positions[i0], positions[i2] - positions[i0]);
     if (dialect == CourseDialect::v2019) {
-      float len = glm::length(n);
+      const float len = glm::length(n);
       if (!(len > 0.f)) continue;  // a zero-area face has no direction to add
       n /= len;
     }
-    position_normals[i0] += n;
-    position_normals[i1] += n;
-    position_normals[i2] += n;
+    sum[i0] += n;
+    sum[i1] += n;
+    sum[i2] += n;
   }
-  for (vec3& n : position_normals) {
-    float len = glm::length(n);
+  for (vec3& n : sum) {
+    const float len = glm::length(n);
     n = len > 0.f ? n / len : vec3(0.f);
   }
+  return sum;
+}
+
+Mesh read_course_mesh(const std::string& path, CourseDialect dialect) {
+  ObjGeometry g = read_obj_geometry(path);
+  std::vector<uint32_t> corners;
+  corners.reserve(g.corners.size());
+  for (const auto& c : g.corners) corners.push_back(uint32_t(c.position));
+  const std::vector<vec3> position_normals = course_position_normals(g.positions, corners, dialect);
 
   Mesh m;
   m.source_path = path;

@@ -7,7 +7,17 @@
 
 #include "course_txt/course_reader.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace rayform {
+
+// The course's vertex-normal rule, per position: the sum over the faces that
+// use a position (three entries of `corners` a face, each a position index)
+// of their face normals, raw cross products (2012) or unit ones (2019, faces
+// of zero area skipped), normalised; zero for a position no face uses.
+std::vector<vec3> course_position_normals(const std::vector<vec3>& positions, const std::vector<uint32_t>& corners,
+                                          CourseDialect dialect);
 
 // Throws rayform::Error naming the file.
 Mesh read_course_mesh(const std::string& path, CourseDialect dialect);

@@ -1,5 +1,7 @@
 #include "course_txt/course_writer.h"
 
+#include "course_txt/course_mesh.h"
+
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
 
@@ -8,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -16,25 +19,11 @@ namespace rayform {
 namespace fs = std::filesystem;
 
 std::vector<vec3> course_normals(const Mesh& mesh, const std::vector<uint32_t>& share, CourseDialect dialect) {
-  std::vector<vec3> sum(mesh.positions.size(), vec3(0.f));
-  for (size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
-    uint32_t i0 = share[mesh.indices[c]], i1 = share[mesh.indices[c + 1]], i2 = share[mesh.indices[c + 2]];
-    vec3 n = glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]);
-    if (dialect == CourseDialect::v2019) {
-      float len = glm::length(n);
-      if (!(len > 0.f)) continue;
-      n /= len;
-    }
-    sum[i0] += n;
-    sum[i1] += n;
-    sum[i2] += n;
-  }
+  std::vector<uint32_t> corners(mesh.indices.size());
+  for (size_t c = 0; c < corners.size(); ++c) corners[c] = share[mesh.indices[c]];
+  const std::vector<vec3> by_position = course_position_normals(mesh.positions, corners, dialect);
   std::vector<vec3> out(mesh.positions.size());
-  for (size_t i = 0; i < out.size(); ++i) {
-    vec3 n = sum[share[i]];
-    float len = glm::length(n);
-    out[i] = len > 0.f ? n / len : vec3(0.f);
-  }
+  for (size_t i = 0; i < out.size(); ++i) out[i] = by_position[share[i]];
   return out;
 }
 
@@ -66,7 +55,7 @@ float normal_deviation(const Mesh& m, const std::vector<vec3>& course) {
     if (!used[i] || glm::length(m.normals[i]) == 0.f) continue;
     // atan2 of |a x b| and a . b: accurate for small angles, where acos is not.
     glm::dvec3 a = glm::normalize(glm::dvec3(m.normals[i])), b(course[i]);
-    worst = std::max(worst, std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * 180.0 / M_PI);
+    worst = std::max(worst, std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * 180.0 / std::numbers::pi);
   }
   return float(worst);
 }
