@@ -22,6 +22,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <memory>
 #include <sstream>
@@ -31,8 +32,6 @@ namespace rayform {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ---- small helpers ----------------------------------------------------------
 
@@ -614,9 +613,9 @@ class GltfSceneBuilder {
     cam.up = glm::normalize(up);
     if (gc.type == "perspective") {
       double yfov = gc.perspective.yfov;
-      if (!(yfov > 0.0 && yfov < kPi)) fail(cw + ".perspective.yfov: " + std::to_string(yfov) + " is not in (0, pi)");
+      if (!(yfov > 0.0 && yfov < std::numbers::pi)) fail(cw + ".perspective.yfov: " + std::to_string(yfov) + " is not in (0, pi)");
       cam.projection = Camera::Projection::perspective;
-      cam.fov_deg = float(yfov * 180.0 / kPi);
+      cam.fov_deg = float(yfov * 180.0 / std::numbers::pi);
     } else if (gc.type == "orthographic") {
       double ymag = gc.orthographic.ymag;
       if (!(std::abs(ymag) > 0.0) || !std::isfinite(ymag)) fail(cw + ".orthographic.ymag: must not be zero");
@@ -664,11 +663,11 @@ class GltfSceneBuilder {
       l.range = float(gl.range);
       if (l.kind == Light::Kind::spot) {
         double inner = gl.spot.innerConeAngle, outer = gl.spot.outerConeAngle;
-        if (!(inner >= 0.0 && inner < outer && outer <= kPi / 2 + 1e-6))
+        if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6))
           fail(lw + ".spot: cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2 (found " +
                std::to_string(inner) + ", " + std::to_string(outer) + ")");
-        l.spot_inner_deg = float(inner * 180.0 / kPi);
-        l.spot_outer_deg = float(outer * 180.0 / kPi);
+        l.spot_inner_deg = float(inner * 180.0 / std::numbers::pi);
+        l.spot_outer_deg = float(outer * 180.0 / std::numbers::pi);
       }
     } else {
       fail(lw + ".type: '" + gl.type + "' is not directional, point or spot");

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 
 namespace rayform {
 
@@ -18,7 +19,8 @@ using mat3 = glm::mat3;
 using mat4 = glm::mat4;  // column-major, as glm: m[column][row]
 using dvec3 = glm::dvec3;
 
-inline constexpr float pi = 3.14159265358979323846f;
+// pi, the one spelling: `pi` in float, std::numbers::pi where double is meant.
+inline constexpr float pi = std::numbers::pi_v<float>;
 inline constexpr float infinity = std::numeric_limits<float>::infinity();
 // Unit roundoff of float: half the distance from 1 to the next float.
 inline constexpr float machine_epsilon = std::numeric_limits<float>::epsilon() * 0.5f;
@@ -49,9 +51,9 @@ inline int max_dimension(vec3 v) { return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v
 
 inline bool is_finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// Point and vector transforms by an affine 4x4 matrix.
 inline bool is_identity(const mat4& m) { return m == mat4(1.f); }
 
+// Point and vector transforms by an affine 4x4 matrix.
 inline vec3 transform_point(const mat4& m, vec3 p) { return vec3(m * vec4(p, 1.0f)); }
 inline vec3 transform_vector(const mat4& m, vec3 v) { return vec3(m * vec4(v, 0.0f)); }
 

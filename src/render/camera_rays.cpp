@@ -1,6 +1,7 @@
 #include "render/camera_rays.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace rayform {
 
@@ -10,7 +11,7 @@ CameraFrame make_camera_frame(const Camera& c, int width, int height) {
   f.w = glm::normalize(c.direction);
   f.u = glm::normalize(glm::cross(f.w, c.up));
   f.v = c.up_vector == Camera::UpVector::raw ? c.up : glm::cross(f.u, f.w);
-  f.focal = float(1.0 / std::tan(double(c.fov_deg) * 3.14159265358979323846 / 360.0));
+  f.focal = float(1.0 / std::tan(double(c.fov_deg) * std::numbers::pi / 360.0));
   f.width_m1 = float(width - 1);
   f.height_m1 = float(height - 1);
   if (c.aspect == Camera::Aspect::fit) f.sx = float(width) / float(height);
