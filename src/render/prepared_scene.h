@@ -26,7 +26,11 @@ struct Instance {
   Bounds3 world_bounds;
 };
 
-// What a scene uses; the render loop takes a path without the rest.
+// What a scene uses. The render loop chooses its compiled path from
+// textures, specular and the skipped hits (alpha_cutout, single_sided) and
+// samples the background from cube_map. The renderer does not read the other
+// flags (its per-light and per-instance branches test the data itself);
+// prepare records them and tests/unit/prepare_test.cpp checks them.
 struct SceneFeatures {
   bool textures = false;       // some hit material samples a texture
   bool specular = false;       // some material has a non-zero specular colour

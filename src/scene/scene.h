@@ -92,7 +92,7 @@ struct Material {
   vec3 specular{0.f};
   float shininess = 0.f;  // Phong exponent
   vec3 emission{0.f};
-  int diffuse_texture = invalid;  // replaces `diffuse` (times diffuse_factor) where the hit has uvs
+  int diffuse_texture = invalid;  // where the hit has uvs: K = diffuse x texel, or the texel alone (below)
   bool texture_modulates = false; // true: K = diffuse * texel (assets); false: K = texel (course)
   UvTransform uv_transform;
   float alpha_cutoff = -1.f;      // < 0: opaque; else texel alpha below it is a hole
@@ -114,7 +114,9 @@ struct Sphere {
   float radius = 1.f;
 };
 
-// The plane normal . p = offset (normal as written, not normalised).
+// The plane normal . p = offset. Readers store a unit normal (the course
+// reader divides the written normal and offset by the normal's length); the
+// intersection and the writers do not depend on it being unit.
 struct Plane {
   vec3 normal{0.f, 1.f, 0.f};
   float offset = 0.f;
