@@ -18,20 +18,20 @@ namespace {
 
 // ---- EXT_meshopt_compression bitstream facts (the extension's Appendix A) ------
 
-constexpr size_t kMeshoptHeaderBytes = 1;              // 0xa0 / 0xe1 / 0xd1, every mode
-constexpr size_t kMeshoptMaxAttributeStride = 256;     // bytes; ATTRIBUTES' byteStride limit
-constexpr size_t kMeshoptAttributeStrideAlign = 4;     // bytes; ATTRIBUTES' byteStride multiple
-constexpr size_t kMeshoptElementsPerHeaderByte = 64;   // 16-element groups, 2 header bits each
-constexpr size_t kMeshoptAttributeTailMinBytes = 32;   // baseline element, padded to 32 bytes
-constexpr size_t kMeshoptTrianglesTailBytes = 16;      // the codeaux lookup table
-constexpr size_t kMeshoptIndicesTailBytes = 4;         // reserved zero bytes
-constexpr size_t kTrianglesIndicesPerCode = 3;         // one code byte per triangle
-constexpr size_t kIndexStride16 = 2;                   // bytes: TRIANGLES / INDICES as 16-bit indices
-constexpr size_t kIndexStride32 = 4;                   // bytes: ... as 32-bit indices
-constexpr size_t kOctahedralStride8 = 4;               // bytes: four 8-bit components
-constexpr size_t kOctahedralStride16 = 8;              // bytes: four 16-bit components
-constexpr size_t kQuaternionStride = 8;                // bytes: four 16-bit components
-constexpr size_t kExponentialStrideAlign = 4;          // bytes: 32-bit values
+constexpr size_t meshopt_header_bytes = 1;              // 0xa0 / 0xe1 / 0xd1, every mode
+constexpr size_t meshopt_max_attribute_stride = 256;     // bytes; ATTRIBUTES' byteStride limit
+constexpr size_t meshopt_attribute_stride_align = 4;     // bytes; ATTRIBUTES' byteStride multiple
+constexpr size_t meshopt_elements_per_header_byte = 64;   // 16-element groups, 2 header bits each
+constexpr size_t meshopt_attribute_tail_min_bytes = 32;   // baseline element, padded to 32 bytes
+constexpr size_t meshopt_triangles_tail_bytes = 16;      // the codeaux lookup table
+constexpr size_t meshopt_indices_tail_bytes = 4;         // reserved zero bytes
+constexpr size_t triangles_indices_per_code = 3;         // one code byte per triangle
+constexpr size_t index_stride16 = 2;                   // bytes: TRIANGLES / INDICES as 16-bit indices
+constexpr size_t index_stride32 = 4;                   // bytes: ... as 32-bit indices
+constexpr size_t octahedral_stride8 = 4;               // bytes: four 8-bit components
+constexpr size_t octahedral_stride16 = 8;              // bytes: four 16-bit components
+constexpr size_t quaternion_stride = 8;                // bytes: four 16-bit components
+constexpr size_t exponential_stride_align = 4;          // bytes: 32-bit values
 
 const char* mode_name(MeshoptMode m) {
   switch (m) {
@@ -62,27 +62,27 @@ void check_meshopt_layout(size_t count, size_t stride, MeshoptMode mode, Meshopt
                           const std::string& where) {
   const std::string found = ", found " + std::to_string(stride);
   if (mode == MeshoptMode::attributes) {
-    if (stride == 0 || stride % kMeshoptAttributeStrideAlign != 0 || stride > kMeshoptMaxAttributeStride)
+    if (stride == 0 || stride % meshopt_attribute_stride_align != 0 || stride > meshopt_max_attribute_stride)
       fail(where, "mode ATTRIBUTES needs a byteStride that is a multiple of 4, from 4 to 256" + found);
   } else {
-    if (stride != kIndexStride16 && stride != kIndexStride32) fail(where, std::string("mode ") + mode_name(mode) + " needs byteStride 2 or 4" + found);
+    if (stride != index_stride16 && stride != index_stride32) fail(where, std::string("mode ") + mode_name(mode) + " needs byteStride 2 or 4" + found);
     if (filter != MeshoptFilter::none)
       fail(where, std::string("filter ") + filter_name(filter) + " is only allowed with mode ATTRIBUTES, not " +
                       mode_name(mode));
-    if (mode == MeshoptMode::triangles && count % kTrianglesIndicesPerCode != 0)
+    if (mode == MeshoptMode::triangles && count % triangles_indices_per_code != 0)
       fail(where, "mode TRIANGLES needs a count that is a multiple of 3, found " + std::to_string(count));
   }
   switch (filter) {
     case MeshoptFilter::none: break;
     case MeshoptFilter::octahedral:
-      if (stride != kOctahedralStride8 && stride != kOctahedralStride16)
+      if (stride != octahedral_stride8 && stride != octahedral_stride16)
         fail(where, "filter OCTAHEDRAL needs byteStride 4 or 8" + found);
       break;
     case MeshoptFilter::quaternion:
-      if (stride != kQuaternionStride) fail(where, "filter QUATERNION needs byteStride 8" + found);
+      if (stride != quaternion_stride) fail(where, "filter QUATERNION needs byteStride 8" + found);
       break;
     case MeshoptFilter::exponential:
-      if (stride % kExponentialStrideAlign != 0) fail(where, "filter EXPONENTIAL needs a byteStride that is a multiple of 4" + found);
+      if (stride % exponential_stride_align != 0) fail(where, "filter EXPONENTIAL needs a byteStride that is a multiple of 4" + found);
       break;
   }
 }
@@ -96,12 +96,12 @@ size_t meshopt_min_stream_bytes(size_t count, size_t stride, MeshoptMode mode) {
     case MeshoptMode::attributes:
       // Each attribute block holds, per byte of the element, 2 header bits per
       // group of 16 elements, rounded up to whole bytes.
-      return kMeshoptHeaderBytes + stride * ((count + kMeshoptElementsPerHeaderByte - 1) / kMeshoptElementsPerHeaderByte) +
-             std::max(stride, kMeshoptAttributeTailMinBytes);
+      return meshopt_header_bytes + stride * ((count + meshopt_elements_per_header_byte - 1) / meshopt_elements_per_header_byte) +
+             std::max(stride, meshopt_attribute_tail_min_bytes);
     case MeshoptMode::triangles:
-      return kMeshoptHeaderBytes + count / kTrianglesIndicesPerCode + kMeshoptTrianglesTailBytes;
+      return meshopt_header_bytes + count / triangles_indices_per_code + meshopt_triangles_tail_bytes;
     case MeshoptMode::indices:
-      return kMeshoptHeaderBytes + count + kMeshoptIndicesTailBytes;  // at least one varint byte per index
+      return meshopt_header_bytes + count + meshopt_indices_tail_bytes;  // at least one varint byte per index
   }
   return 0;
 }
@@ -197,13 +197,13 @@ DracoMesh decode_draco(const uint8_t* data, size_t size, const std::vector<int>&
   DracoMesh out;
   out.vertex_count = mesh->num_points();
   const size_t face_count = mesh->num_faces();
-  constexpr size_t kCorners = 3;  // indices per triangle
-  if (face_count > max_decoded_geometry_bytes / (kCorners * sizeof(uint32_t)))
+  constexpr size_t corners = 3;  // indices per triangle
+  if (face_count > max_decoded_geometry_bytes / (corners * sizeof(uint32_t)))
     fail(where, "the Draco mesh has " + std::to_string(face_count) + " triangles, more than rayform accepts");
-  out.indices.reserve(face_count * kCorners);
+  out.indices.reserve(face_count * corners);
   for (size_t f = 0; f < face_count; ++f) {
     const draco::Mesh::Face& face = mesh->face(draco::FaceIndex(uint32_t(f)));
-    for (size_t k = 0; k < kCorners; ++k) {
+    for (size_t k = 0; k < corners; ++k) {
       const uint32_t p = face[k].value();
       if (p >= out.vertex_count)
         fail(where, "Draco triangle " + std::to_string(f) + " uses vertex " + std::to_string(p) + " but the mesh has " +

@@ -149,8 +149,8 @@ mat3 look_basis(vec3 dir, vec3 up) {
 
 // ---- the writer --------------------------------------------------------------------------
 
-constexpr int kArrayBuffer = TINYGLTF_TARGET_ARRAY_BUFFER;
-constexpr int kElementBuffer = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+constexpr int array_buffer = TINYGLTF_TARGET_ARRAY_BUFFER;
+constexpr int element_buffer = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
 
 // Keeps every image's URI as set here (tinygltf would otherwise re-encode).
 bool keep_image_uri(const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* out_uri,
@@ -248,7 +248,7 @@ class GltfBuilder {
       lo = {double(a.x), double(a.y), double(a.z)};
       hi = {double(b.x), double(b.y), double(b.z)};
     }
-    int view = add_view(v.data(), v.size() * sizeof(vec3), kArrayBuffer);
+    int view = add_view(v.data(), v.size() * sizeof(vec3), array_buffer);
     return add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, v.size(), TINYGLTF_TYPE_VEC3, lo, hi);
   }
 
@@ -313,16 +313,16 @@ class GltfBuilder {
     g.position = add_vec3s(pos, true);
     if (!nor.empty()) g.normal = add_vec3s(nor, false);
     if (!uv.empty()) {
-      int view = add_view(uv.data(), uv.size() * sizeof(vec2), kArrayBuffer);
+      int view = add_view(uv.data(), uv.size() * sizeof(vec2), array_buffer);
       g.uv = add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, uv.size(), TINYGLTF_TYPE_VEC2);
     }
     if (!col.empty()) g.color = add_vec3s(col, false);
     if (pos.size() < 65535) {  // 65535 is the restart value: not an index
       std::vector<uint16_t> i16(corners.begin(), corners.end());
-      int view = add_view(i16.data(), i16.size() * 2, kElementBuffer);
+      int view = add_view(i16.data(), i16.size() * 2, element_buffer);
       g.indices = add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, i16.size(), TINYGLTF_TYPE_SCALAR);
     } else {
-      int view = add_view(corners.data(), corners.size() * 4, kElementBuffer);
+      int view = add_view(corners.data(), corners.size() * 4, element_buffer);
       g.indices = add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, corners.size(), TINYGLTF_TYPE_SCALAR);
     }
     stored_.emplace(std::move(key), g);
