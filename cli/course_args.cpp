@@ -1,4 +1,5 @@
 #include "course_args.h"
+#include "commands.h"
 
 #include <cerrno>
 #include <cmath>
@@ -57,11 +58,8 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     if (f == "-input") { job.input = a.take(f, "a scene file"); has_input = true; }
     else if (f == "-output") { job.output = a.take(f, "an image file"); has_output = true; }
     else if (f == "-size") {
-      job.width = a.integer(f, "a width and a height in pixels");
-      job.height = a.integer(f, "a width and a height in pixels");
-      if (job.width <= 0 || job.height <= 0)
-        throw UsageError("-size expects a positive width and height, got " + std::to_string(job.width) + " " +
-                         std::to_string(job.height));
+      job.render.width = a.integer(f, "a width and a height in pixels");
+      job.render.height = a.integer(f, "a width and a height in pixels");
       has_size = true;
     } else if (f == "-depth") {
       DepthOutput d;
@@ -73,30 +71,28 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     else if (f == "-albedo") job.albedo = a.take(f, "an image file");
     else if (f == "-dialect") {
       std::string d = a.take(f, "2012 or 2019");
-      if (d == "2012") job.dialect = CourseDialect::v2012;
-      else if (d == "2019") job.dialect = CourseDialect::v2019;
-      else throw UsageError("-dialect expects 2012 or 2019, got '" + d + "'");
+      job.dialect = dialect_from_string(d);
+      if (!job.dialect) throw UsageError("-dialect expects 2012 or 2019, got '" + d + "'");
     } else if (f == "-bounces") {
-      job.bounces = a.integer(f, "a number of bounces");
-      if (job.bounces < 0) throw UsageError("-bounces expects a number >= 0");
-    } else if (f == "-shadows") job.shadows = true;
-    else if (f == "-jitter") job.spp = std::max(job.spp, 16);
-    else if (f == "-filter") job.filter = PixelFilter::tent;
+      job.render.bounces = a.integer(f, "a number of bounces");
+    } else if (f == "-shadows") job.render.shadows = true;
+    else if (f == "-jitter") job.render.spp = std::max(job.render.spp, 16);
+    else if (f == "-filter") job.render.filter = PixelFilter::tent;
     else if (f == "-spp") {
-      job.spp = a.integer(f, "a number of samples per pixel");
-      if (job.spp < 1) throw UsageError("-spp expects a number >= 1");
+      job.render.spp = a.integer(f, "a number of samples per pixel");
     }
     else if (f == "-threads") {
-      job.threads = a.integer(f, "a number of threads");
-      if (job.threads < 0) throw UsageError("-threads expects a number >= 0");
+      job.render.threads = a.integer(f, "a number of threads");
     } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
     else if (f == "-stats") job.stats = true;
-    else if (f == "-generic") job.generic = true;
+    else if (f == "-generic") job.render.generic = true;
     else throw UsageError("unknown option '" + f + "'");
   }
   if (!has_input) throw UsageError("missing -input SCENE");
   if (!has_output) throw UsageError("missing -output IMAGE");
   if (!has_size) throw UsageError("missing -size WIDTH HEIGHT");
+  // The one check of the render parameters (render.h), under the course's flag names.
+  if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError("-" + problem);
   return job;
 }
 

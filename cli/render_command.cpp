@@ -19,7 +19,6 @@ void parse_size(const std::string& s, int* w, int* h) {
   } catch (const std::exception&) {
     throw UsageError("--size expects WIDTHxHEIGHT, e.g. 640x480, got '" + s + "'");
   }
-  if (*w <= 0 || *h <= 0) throw UsageError("--size expects a positive width and height, got '" + s + "'");
 }
 
 // "MIN:MAX:FILE" -> depth output.
@@ -62,7 +61,8 @@ vec3 parse_vec3(const std::string& s, const char* option) {
 
 struct RenderArgs {
   RenderJob job;
-  std::string size = "200x200", depth, dialect, filter = "box", color = "auto";
+  std::string size = std::to_string(RenderOptions{}.width) + "x" + std::to_string(RenderOptions{}.height);
+  std::string depth, dialect, filter = "box", color = "auto";
   std::string look_from, look_at, up, background;
   float fov = 0.f;
 };
@@ -86,11 +86,11 @@ void add_render_command(CLI::App& app) {
   render->add_option("--normals", job.normals, "Normals image");
   render->add_option("--albedo", job.albedo, "Unlit surface colour image");
   render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")->check(CLI::IsMember({"2012", "2019"}));
-  render->add_option("--camera", job.camera, "Camera index")->check(CLI::NonNegativeNumber);
-  render->add_option("--threads", job.threads, "Worker threads (0: all)")->check(CLI::NonNegativeNumber);
-  render->add_flag("--shadows", job.shadows, "Shadow rays to every light");
-  render->add_option("--bounces", job.bounces, "Reflection/refraction depth")->check(CLI::NonNegativeNumber);
-  render->add_option("--spp", job.spp, "Samples per pixel (anti-aliasing)")->check(CLI::PositiveNumber);
+  render->add_option("--camera", job.render.camera, "Camera index");
+  render->add_option("--threads", job.render.threads, "Worker threads (0: all)");
+  render->add_flag("--shadows", job.render.shadows, "Shadow rays to every light");
+  render->add_option("--bounces", job.render.bounces, "Reflection/refraction depth");
+  render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")->check(CLI::IsMember({"box", "tent"}))->capture_default_str();
   render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
       ->check(CLI::IsMember({"auto", "raw", "srgb"}))->capture_default_str();
@@ -101,14 +101,14 @@ void add_render_command(CLI::App& app) {
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
-  render->add_flag("--generic", job.generic, "Force the general render path (no feature specialisation)");
+  render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render times and accelerator memory on stderr");
   render->callback([a] {
-    parse_size(a->size, &a->job.width, &a->job.height);
+    parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
-    a->job.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
+    a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
     a->job.color = a->color == "raw" ? RenderJob::ColorEncoding::raw
                    : a->color == "srgb" ? RenderJob::ColorEncoding::srgb
                                         : RenderJob::ColorEncoding::automatic;
@@ -117,6 +117,9 @@ void add_render_command(CLI::App& app) {
     if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
     if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
     if (a->fov != 0.f) a->job.fov = a->fov;
+    // The one check of the render parameters (render.h), under this command's flag names.
+    if (std::string problem = render_options_problem(a->job.render); !problem.empty())
+      throw UsageError("--" + problem);
     run_render_job(a->job);
   });
 }

@@ -21,9 +21,10 @@ namespace {
 // Applies --look-from/--look-at/--up/--fov to the chosen camera.
 void apply_camera_overrides(const RenderJob& job, Scene& scene) {
   if (!(job.look_from || job.look_at || job.up || job.fov)) return;
-  if (job.camera < 0 || job.camera >= int(scene.cameras.size()))
-    throw Error("the scene has no camera " + std::to_string(job.camera) + " to adjust");
-  Camera& c = scene.cameras[job.camera];
+  const int camera = job.render.camera;
+  if (camera < 0 || camera >= int(scene.cameras.size()))
+    throw Error("the scene has no camera " + std::to_string(camera) + " to adjust");
+  Camera& c = scene.cameras[camera];
   vec3 target = c.center + c.direction;  // keep looking at the same point when only moving
   if (job.look_from) c.center = *job.look_from;
   if (job.look_at) target = *job.look_at;
@@ -55,8 +56,6 @@ void check_output_path(const std::string& path, const char* what) {
 }
 
 void run_render_job(const RenderJob& job) {
-  if (job.width <= 0 || job.height <= 0)
-    throw Error("image size must be positive, got " + std::to_string(job.width) + " x " + std::to_string(job.height));
   check_output_path(job.output, "colour");
   if (job.depth) {
     check_output_path(job.depth->file, "depth");
@@ -66,7 +65,7 @@ void run_render_job(const RenderJob& job) {
   if (!job.normals.empty()) check_output_path(job.normals, "normals");
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
-  if (job.spp < 1) throw Error("samples per pixel must be at least 1");
+  if (std::string problem = render_options_problem(job.render); !problem.empty()) throw Error(problem);
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   auto t_load = clock::now();
@@ -83,7 +82,7 @@ void run_render_job(const RenderJob& job) {
   if (asset && add_default_camera(loaded.scene))
     std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
   apply_camera_overrides(job, loaded.scene);
-  if (asset && add_headlight(loaded.scene, job.camera))
+  if (asset && add_headlight(loaded.scene, job.render.camera))
     std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
@@ -91,16 +90,7 @@ void run_render_job(const RenderJob& job) {
   PreparedScene prepared = prepare_scene(loaded.scene);
   double prepare_s = seconds_since(t_prepare);
 
-  RenderOptions ro;
-  ro.width = job.width;
-  ro.height = job.height;
-  ro.camera = job.camera;
-  ro.threads = job.threads;
-  ro.shadows = job.shadows;
-  ro.bounces = job.bounces;
-  ro.generic = job.generic;
-  ro.spp = job.spp;
-  ro.filter = job.filter;
+  RenderOptions ro = job.render;
   ro.depth = job.depth.has_value();
   ro.normals = !job.normals.empty();
   ro.albedo = !job.albedo.empty();
@@ -112,7 +102,7 @@ void run_render_job(const RenderJob& job) {
   progress.finish();
   if (job.stats)
     std::cerr << "stats: load " << load_s << " s, prepare " << prepare_s << " s, render " << render_s << " s ("
-              << render_path_name(prepared, ro) << " path, " << job.width << "x" << job.height << ", " << job.spp
+              << render_path_name(prepared, ro) << " path, " << ro.width << "x" << ro.height << ", " << ro.spp
               << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;

@@ -2,7 +2,7 @@
 // Shared by the course-compatible flags and the `render` subcommand.
 #pragma once
 
-#include "render/sampling.h"
+#include "render/render.h"
 #include "scene_io.h"
 
 #include <optional>
@@ -18,23 +18,19 @@ struct DepthOutput {
 struct RenderJob {
   std::string input;
   std::string output;
-  int width = 200, height = 200;
+  // Size, camera, threads, shadows, bounces, spp, filter, generic: filled by
+  // the command line, handed to render() as they are. The output flags
+  // (depth/normals/albedo) are set from the outputs below.
+  RenderOptions render;
   std::optional<DepthOutput> depth;
   std::string normals;  // empty: not written
   std::string albedo;   // empty: not written
   std::optional<CourseDialect> dialect;
-  int bounces = 0;
-  bool shadows = false;
-  int spp = 1;
-  PixelFilter filter = PixelFilter::box;
   // Output transfer function: auto = raw for course scenes, sRGB for assets.
   enum class ColorEncoding { automatic, raw, srgb } color = ColorEncoding::automatic;
   // Camera and background overrides (any format).
   std::optional<vec3> look_from, look_at, up, background;
   std::optional<float> fov;
-  int threads = 0;
-  int camera = 0;
-  bool generic = false;
   bool quiet = false;
   bool stats = false;  // print timings and counts on stderr
   bool flat_normals = false;  // OBJ: missing normals faceted

@@ -230,13 +230,20 @@ std::string render_path_name(const PreparedScene& p, const RenderOptions& o) {
   return name + ")";
 }
 
+std::string render_options_problem(const RenderOptions& o) {
+  if (o.width <= 0 || o.height <= 0)
+    return "size: width and height must be positive, got " + std::to_string(o.width) + "x" + std::to_string(o.height);
+  if (o.spp < 1) return "spp: samples per pixel must be at least 1, got " + std::to_string(o.spp);
+  if (o.bounces < 0) return "bounces: must not be negative, got " + std::to_string(o.bounces);
+  if (o.threads < 0) return "threads: must not be negative, got " + std::to_string(o.threads);
+  if (o.camera < 0) return "camera: must not be negative, got " + std::to_string(o.camera);
+  return "";
+}
+
 RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   const Scene& s = *p.scene;
-  if (o.width <= 0 || o.height <= 0)
-    throw Error("render: image size must be positive, got " + std::to_string(o.width) + "x" + std::to_string(o.height));
-  if (o.spp < 1) throw Error("render: samples per pixel must be at least 1, got " + std::to_string(o.spp));
-  if (o.bounces < 0) throw Error("render: bounces must not be negative");
-  if (o.camera < 0 || o.camera >= int(s.cameras.size()))
+  if (std::string problem = render_options_problem(o); !problem.empty()) throw Error("render: " + problem);
+  if (o.camera >= int(s.cameras.size()))
     throw Error("render: the scene has no camera " + std::to_string(o.camera) + " (it has " +
                 std::to_string(s.cameras.size()) + ")");
   const int W = o.width, H = o.height;

@@ -12,8 +12,10 @@
 
 namespace rayform {
 
+// The render parameters, one owner: their defaults are here, their rules in
+// render_options_problem below, and the command line fills this struct (no copy).
 struct RenderOptions {
-  int width = 200, height = 200;  // pixels
+  int width = 200, height = 200;  // pixels (the course's default size)
   int camera = 0;                  // index into Scene::cameras
   int threads = 0;                 // 0: all hardware threads
   bool shadows = false;            // shadow rays to each light
@@ -41,7 +43,15 @@ struct RenderResult {
   Image albedo;                // 3 channels
 };
 
-// Throws rayform::Error for an invalid size, sample count or camera index.
+// What is wrong with `options`, "" when nothing: the one check of the
+// parameters a caller sets (image size >= 1 x 1, spp >= 1, bounces >= 0,
+// threads >= 0, camera >= 0). Each message starts with the parameter's name,
+// e.g. "size: width and height must be positive, got 0x20", so that a
+// command line can put its own flag in front.
+std::string render_options_problem(const RenderOptions& options);
+
+// Throws rayform::Error for options render_options_problem refuses, or a
+// camera index the scene does not have.
 RenderResult render(const PreparedScene& scene, const RenderOptions& options);
 
 // Which specialised path render() takes for this scene and these options
