@@ -24,16 +24,16 @@ namespace {
 // image (checked by tests).
 template <bool Textures, bool Specular, bool Skips>
 struct Tracer {
-  const PreparedScene& p;
-  const RenderOptions& o;
-  const Scene& s;
+  const PreparedScene& prepared;
+  const RenderOptions& options;
+  const Scene& scene;
 
   vec3 miss(const Ray& ray) const {
-    return p.features.cube_map ? sample_cube_map(p.cube_map, ray.direction) : s.background.color;
+    return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
   }
 
   vec4 albedo(const Material& m, const SurfacePoint& sp) const {
-    if constexpr (Textures) return surface_albedo(p, m, sp);
+    if constexpr (Textures) return surface_albedo(prepared, m, sp);
     else return vec4(m.diffuse * sp.color, 1.f);
   }
 
@@ -41,9 +41,9 @@ struct Tracer {
   // cutoff) nor the back face of a single-sided material: those the ray passes.
   bool closest(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
     for (;;) {
-      if (!intersect_scene(p, ray, hit)) return false;
-      *sp = surface_point(p, ray, *hit);
-      const Material& m = p.materials[sp->material];
+      if (!intersect_scene(prepared, ray, hit)) return false;
+      *sp = surface_point(prepared, ray, *hit);
+      const Material& m = prepared.materials[sp->material];
       if constexpr (Skips) {
         if (!m.double_sided && glm::dot(ray.direction, sp->geometric_normal) > 0.f) {
           ray.tmin = next_float_up(hit->t);
@@ -69,7 +69,7 @@ struct Tracer {
     Ray shadow = l.kind == Light::Kind::directional
                      ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
                      : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);
-    return occluded(p, shadow);
+    return occluded(prepared, shadow);
   }
 
   vec3 radiance(const Ray& ray, int depth) const {
@@ -81,18 +81,18 @@ struct Tracer {
   }
 
   vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth) const {
-    const Material& m = p.materials[sp.material];
+    const Material& m = prepared.materials[sp.material];
     if (m.unlit) return k;
     vec3 d = glm::normalize(ray.direction);
-    vec3 c = s.background.ambient * k + m.emission;
-    for (const Light& l : s.lights) {
+    vec3 c = scene.background.ambient * k + m.emission;
+    for (const Light& l : scene.lights) {
       LightSample ls = sample_light(l, sp.position);
-      if (o.shadows && blocked(sp, l, ls)) continue;
+      if (options.shadows && blocked(sp, l, ls)) continue;
       if constexpr (Specular) c += phong_light(m, k, sp.normal, d, ls);
       else c += diffuse_light(k, sp.normal, ls);
     }
     if constexpr (Specular) {
-      if (depth < o.bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth);
+      if (depth < options.bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth);
     }
     return c;
   }
@@ -133,12 +133,12 @@ struct PixelOut {
 template <bool Textures, bool Specular, bool Skips>
 void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res) {
   const Scene& s = *p.scene;
-  const int W = o.width, H = o.height;
-  const CameraFrame frame = make_camera_frame(s.cameras[o.camera], W, H);
+  const int width = o.width, height = o.height;
+  const CameraFrame frame = make_camera_frame(s.cameras[o.camera], width, height);
   const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
   const int ts = std::max(1, o.tile_size);
-  const int tiles_x = (W + ts - 1) / ts, tiles_y = (H + ts - 1) / ts, tiles = tiles_x * tiles_y;
+  const int tiles_x = (width + ts - 1) / ts, tiles_y = (height + ts - 1) / ts, tiles = tiles_x * tiles_y;
   std::atomic<int> done{0};
   std::mutex progress_mutex;
 
@@ -159,12 +159,12 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
 
   auto render_tile = [&](int tile) {
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-    int x1 = std::min(W, x0 + ts), y1 = std::min(H, y0 + ts);
+    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         // Row y counts from the top; the camera's j counts from the bottom.
-        const float i = float(x), j = float(H - 1 - y);
-        const uint32_t pixel = uint32_t(y) * uint32_t(W) + uint32_t(x);
+        const float i = float(x), j = float(height - 1 - y);
+        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
         PixelOut px;
         if (o.spp <= 1) {
           trace_primary(camera_ray(frame, i, j), px);
@@ -246,14 +246,14 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   if (o.camera >= int(s.cameras.size()))
     throw Error("render: the scene has no camera " + std::to_string(o.camera) + " (it has " +
                 std::to_string(s.cameras.size()) + ")");
-  const int W = o.width, H = o.height;
+  const int width = o.width, height = o.height;
   RenderResult res;
-  res.width = W;
-  res.height = H;
-  res.color = Image(W, H, 3);
-  if (o.depth) res.depth.assign(size_t(W) * H, infinity);
-  if (o.normals) res.normals.assign(size_t(W) * H, vec3(0.f));
-  if (o.albedo) res.albedo = Image(W, H, 3);
+  res.width = width;
+  res.height = height;
+  res.color = Image(width, height, 3);
+  if (o.depth) res.depth.assign(size_t(width) * height, infinity);
+  if (o.normals) res.normals.assign(size_t(width) * height, vec3(0.f));
+  if (o.albedo) res.albedo = Image(width, height, 3);
 
   PathChoice c = choose_path(p, o);
   // Dispatch to one of the eight compiled paths.
