@@ -4,10 +4,10 @@
 #include "render/aov_images.h"
 #include "render/prepared_scene.h"
 #include "image/color.h"
+#include "image/output_files.h"
 #include "render/render.h"
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
-#include "scene_writer.h"
 
 #include <algorithm>
 #include <chrono>

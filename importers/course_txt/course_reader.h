@@ -3,6 +3,7 @@
 // and what was expected.
 #pragma once
 
+#include "course_txt/course_dialect.h"
 #include "scene/scene.h"
 
 #include <optional>
@@ -11,8 +12,6 @@
 #include <vector>
 
 namespace rayform {
-
-enum class CourseDialect { v2012, v2019 };
 
 struct CourseReadOptions {
   // The dialect to use; when unset it is 2019 if the scene uses `falloff` or

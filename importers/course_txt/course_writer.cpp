@@ -1,9 +1,12 @@
 #include "course_txt/course_writer.h"
 
 #include "course_txt/course_mesh.h"
+#include "image/output_files.h"
 
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
+#include "text_format.h"
+#include "texture_files.h"
 
 #include <algorithm>
 #include <cmath>
@@ -639,8 +642,7 @@ class CourseBuilder {
 
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                               std::vector<std::string>* messages) {
-  if (scene.root == invalid || size_t(scene.root) >= scene.nodes.size())
-    throw Error(path + ": the scene has no root node: nothing to write");
+  require_scene_root(scene, path);
   return CourseBuilder(scene, path, options, messages).write();
 }
 

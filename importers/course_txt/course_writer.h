@@ -27,7 +27,7 @@
 // Everything the course cannot hold is reported in the messages.
 #pragma once
 
-#include "course_txt/course_reader.h"
+#include "course_txt/course_dialect.h"
 #include "scene_writer.h"
 
 #include <optional>

@@ -1,6 +1,10 @@
 #include "gltf/gltf_writer.h"
 
 #include "gltf/gltf_material.h"
+#include "image/output_files.h"
+#include "shape_tessellation.h"
+#include "text_format.h"
+#include "texture_files.h"
 
 #include "scene/error.h"
 #include "scene/file_extension.h"
@@ -922,8 +926,7 @@ class GltfBuilder {
 
 SaveResult write_gltf_scene(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
                             std::vector<std::string>* messages) {
-  if (scene.root == invalid || size_t(scene.root) >= scene.nodes.size())
-    throw Error(path + ": the scene has no root node: nothing to write");
+  require_scene_root(scene, path);
   return GltfBuilder(scene, path, options, messages).write();
 }
 

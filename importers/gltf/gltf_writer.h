@@ -11,7 +11,7 @@
 //   (v flipped back: v_gltf = 1 - v_scene), COLOR_0; a mesh whose faces use
 //   several materials as one primitive per material;
 // - spheres as UV spheres (GltfWriteOptions::sphere_segments), planes as large
-//   quads around the scene (scene_writer.h: plane_quad), standalone triangles
+//   quads around the scene (shape_tessellation.h: plane_quad), standalone triangles
 //   as one-triangle meshes, each keeping its analytic form in the primitive's
 //   extras;
 // - Phong materials as metallic-roughness (gltf_material.h: phong_to_pbr), the Phong

@@ -1,6 +1,11 @@
 #include "obj/obj_writer.h"
 
+#include "image/output_files.h"
 #include "scene/error.h"
+#include "scene_flatten.h"
+#include "shape_tessellation.h"
+#include "text_format.h"
+#include "texture_files.h"
 
 #include <algorithm>
 #include <cmath>
@@ -411,8 +416,7 @@ class ObjBuilder {
 
 SaveResult write_obj_scene(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
                            std::vector<std::string>* messages) {
-  if (scene.root == invalid || size_t(scene.root) >= scene.nodes.size())
-    throw Error(path + ": the scene has no root node: nothing to write");
+  require_scene_root(scene, path);
   return ObjBuilder(scene, path, options, messages).write();
 }
 

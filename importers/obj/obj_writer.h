@@ -5,7 +5,7 @@
 // winding reversed under mirrors), and each node's shapes become one `o`
 // section named after the node (a mesh whose faces use several materials
 // stays one section with `usemtl` switches). Spheres are tessellated and
-// planes become large quads (scene_writer.h); cameras, lights and the
+// planes become large quads (shape_tessellation.h); cameras, lights and the
 // background are dropped. Each of these is reported in the messages.
 //
 // What is kept: positions, uvs (`vt`), normals (`vn`; a mesh without normals,

@@ -75,4 +75,15 @@ std::string format_scene_stats(const SceneStats& s) {
   return o.str();
 }
 
+MeshTotals mesh_totals(const Scene& scene) {
+  MeshTotals t;
+  for (const Mesh& m : scene.meshes) {
+    t.vertices += m.positions.size();
+    t.uvs += m.uvs.size();
+    t.normals += m.normals.size();
+    t.triangles += m.triangle_count();
+  }
+  return t;
+}
+
 }  // namespace rayform

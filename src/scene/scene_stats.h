@@ -23,4 +23,10 @@ SceneStats scene_stats(const Scene& scene);
 // Human-readable summary, one item a line.
 std::string format_scene_stats(const SceneStats& s);
 
+// Mesh counts over the scene's meshes (each once).
+struct MeshTotals {
+  size_t vertices = 0, uvs = 0, normals = 0, triangles = 0;
+};
+MeshTotals mesh_totals(const Scene& scene);
+
 }  // namespace rayform

@@ -10,9 +10,11 @@
 #include "scene/scene_stats.h"
 #include "scene_io.h"
 #include "scene_writer.h"
+#include "shape_tessellation.h"
 #include "test_importers.h"
 #include "test_paths.h"
 #include "test_scenes.h"
+#include "texture_files.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>

@@ -17,13 +17,6 @@ namespace rayform {
 namespace {
 namespace fs = std::filesystem;
 
-std::vector<std::string> files_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 TEST(ImageIo, EightBitFormatsQuantiseByFloor) {
   auto dir = test::temp_dir("image_io_floor");
   // value -> expected byte: floor(v * 255) clamped; NaN -> 0.
@@ -106,10 +99,10 @@ TEST(ImageIo, RoundTripExrKeepsFloatValues) {
 TEST(ImageIo, SuccessfulWriteLeavesOnlyTheTarget) {
   auto dir = test::temp_dir("image_io_ok");
   write_image((dir / "out.png").string(), pattern(4, 4, 3));
-  EXPECT_EQ(files_in(dir), std::vector<std::string>{"out.png"});
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"out.png"});
   // Overwriting replaces the file and still leaves nothing else.
   write_image((dir / "out.png").string(), pattern(8, 2, 3));
-  EXPECT_EQ(files_in(dir), std::vector<std::string>{"out.png"});
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"out.png"});
   EXPECT_EQ(read_image((dir / "out.png").string()).width, 8);
   fs::remove_all(dir);
 }
@@ -122,7 +115,7 @@ void expect_write_fails(const fs::path& target, const Image& img, const fs::path
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << "message names the file: " << e.what();
   }
-  EXPECT_EQ(files_in(watched_dir), files_before) << "a failed write left a file behind in " << watched_dir;
+  EXPECT_EQ(test::files_in(watched_dir), files_before) << "a failed write left a file behind in " << watched_dir;
 }
 
 TEST(ImageIo, FailedWritesThrowAndLeaveNothing) {

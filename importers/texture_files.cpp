@@ -1,0 +1,115 @@
+#include "texture_files.h"
+
+#include "image/image.h"
+#include "scene/error.h"
+#include "scene/file_extension.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+namespace rayform {
+namespace fs = std::filesystem;
+
+std::string texture_base_name(const Texture& t) {
+  std::string n = !t.name.empty() ? t.name : (!t.path.empty() ? t.path : std::string("texture"));
+  std::replace(n.begin(), n.end(), '\\', '/');
+  std::string stem = fs::path(n).stem().string();
+  return stem.empty() ? std::string("texture") : stem;
+}
+
+std::vector<uint8_t> read_file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open file");
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw Error(path + ": cannot read file");
+  return bytes;
+}
+
+Pixels8 texture_pixels(const Texture& t) {
+  Pixels8 p;
+  if (!t.pixels.empty()) {
+    p.width = t.width;
+    p.height = t.height;
+    p.channels = t.channels;
+    if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 ||
+        t.pixels.size() != size_t(p.width) * size_t(p.height) * size_t(p.channels))
+      throw Error("texture '" + t.name + "': inconsistent pixel data");
+    p.data = t.pixels;
+    return p;
+  }
+  if (t.path.empty()) throw Error("texture '" + t.name + "': neither pixels nor a file");
+  std::vector<uint8_t> bytes = read_file_bytes(t.path);
+  int w = 0, h = 0, c = 0;
+  if (unsigned char* d = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &c, 0)) {
+    p.width = w;
+    p.height = h;
+    p.channels = c;
+    p.data.assign(d, d + size_t(w) * size_t(h) * size_t(c));
+    stbi_image_free(d);
+    return p;
+  }
+  // Formats stb does not read (tiff, exr, ...): through the image module.
+  Image img = read_image(t.path);
+  p.width = img.width;
+  p.height = img.height;
+  p.channels = std::min(img.channels, 4);
+  p.data.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
+  for (size_t i = 0, n = size_t(p.width) * size_t(p.height); i < n; ++i)
+    for (int k = 0; k < p.channels; ++k)
+      p.data[i * size_t(p.channels) + size_t(k)] = uint8_t(
+          std::lround(std::clamp(img.pixels[i * size_t(img.channels) + size_t(k)], 0.f, 1.f) * 255.f));
+  return p;
+}
+
+namespace {
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<uint8_t>*>(context);
+  const uint8_t* b = static_cast<const uint8_t*>(data);
+  out->insert(out->end(), b, b + size);
+}
+}  // namespace
+
+std::vector<uint8_t> encode_png(const Pixels8& p) {
+  std::vector<uint8_t> out;
+  if (!stbi_write_png_to_func(append_bytes, &out, p.width, p.height, p.channels, p.data.data(),
+                              p.width * p.channels))
+    throw Error("cannot encode a PNG image");
+  return out;
+}
+
+std::vector<uint8_t> encode_bmp(const Pixels8& p) {
+  // 24-bit BMP: the course reads no other kind.
+  std::vector<uint8_t> rgb(size_t(p.width) * size_t(p.height) * 3);
+  for (size_t i = 0, n = size_t(p.width) * size_t(p.height); i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      rgb[i * 3 + size_t(k)] = p.data[i * size_t(p.channels) + size_t(p.channels >= 3 ? k : 0)];
+  std::vector<uint8_t> out;
+  if (!stbi_write_bmp_to_func(append_bytes, &out, p.width, p.height, 3, rgb.data()))
+    throw Error("cannot encode a BMP image");
+  return out;
+}
+
+std::vector<uint8_t> texture_file(const Texture& t, const std::vector<std::string>& wanted, std::string* ext) {
+  if (!t.path.empty()) {
+    std::string e = lower_extension(t.path);
+    if (!e.empty()) e = e.substr(1);
+    if (e == "jpeg") e = "jpg";
+    std::error_code ec;
+    if (std::find(wanted.begin(), wanted.end(), e) != wanted.end() && fs::is_regular_file(t.path, ec)) {
+      *ext = e;
+      return read_file_bytes(t.path);
+    }
+  }
+  Pixels8 p = texture_pixels(t);
+  *ext = wanted.at(0);
+  return *ext == "bmp" ? encode_bmp(p) : encode_png(p);
+}
+
+}  // namespace rayform

@@ -1,0 +1,49 @@
+// Atomic, all-or-nothing output: a set of files committed together, used by
+// the scene writers and by the CLI for rendered images.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+// A set of output files committed together: each is written to a temporary
+// name in its final folder, then all are renamed into place, the main file
+// last. On failure nothing is renamed and the temporaries are removed.
+class OutputFiles {
+ public:
+  // `main` is written last; its folder must exist.
+  explicit OutputFiles(std::string main);
+  ~OutputFiles();
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+
+  const std::string& main() const { return main_; }
+  // A path for `file_name` beside the main file.
+  std::string beside(const std::string& file_name) const;
+  // Content of a file (a later add of the same path replaces it).
+  void add(const std::string& path, std::vector<uint8_t> bytes);
+  void add(const std::string& path, const std::string& text);
+  // A file already written at `temp_path` (on the same file system) that
+  // becomes `path` at commit; removed with the other temporaries when the
+  // set is not committed.
+  void add_written(const std::string& path, const std::string& temp_path);
+  bool has(const std::string& path) const;
+  // A fresh temporary folder beside the main file, removed by the destructor.
+  std::string temp_dir();
+  // Writes and renames everything; returns the final paths, main first.
+  std::vector<std::string> commit();
+
+ private:
+  struct Entry {
+    std::string path;
+    std::vector<uint8_t> bytes;
+    std::string temp;  // non-empty: already written there
+  };
+  std::string main_;
+  std::vector<Entry> entries_;
+  std::vector<std::string> temps_, temp_dirs_;
+};
+
+}  // namespace rayform

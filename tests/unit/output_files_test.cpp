@@ -1,0 +1,85 @@
+// OutputFiles (image/output_files.h): a set of files committed together, all
+// or nothing. Image writes through it are covered by image_io_test.cpp; the
+// scene writers' failures by tests/importers/scene_writer_test.cpp.
+#include "image/output_files.h"
+#include "scene/error.h"
+#include "test_paths.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace rayform {
+namespace {
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(OutputFiles, CommitWritesEveryFileMainFirstAndLeavesNoTemporary) {
+  auto dir = test::temp_dir("output_files_commit");
+  const std::string main = (dir / "scene.gltf").string();
+  {
+    OutputFiles files(main);
+    EXPECT_EQ(files.beside("scene.bin"), (dir / "scene.bin").string());
+    files.add(main, std::string("main"));
+    files.add(files.beside("scene.bin"), std::vector<uint8_t>{1, 2, 3});
+    files.add(files.beside("tex.png"), std::string("old"));
+    files.add(files.beside("tex.png"), std::string("new"));  // replaces
+    const std::string written = files.temp_dir() + "/written";
+    { std::ofstream(written, std::ios::binary) << "from a temporary"; }
+    files.add_written(files.beside("image.png"), written);
+    EXPECT_TRUE(files.has(files.beside("tex.png")));
+    EXPECT_FALSE(files.has(files.beside("other.png")));
+    std::vector<std::string> done = files.commit();
+    ASSERT_EQ(done.size(), 4u);
+    EXPECT_EQ(done.front(), main);
+  }
+  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"image.png", "scene.bin", "scene.gltf", "tex.png"}));
+  EXPECT_EQ(read_text(dir / "scene.gltf"), "main");
+  EXPECT_EQ(read_text(dir / "scene.bin"), std::string("\x01\x02\x03"));
+  EXPECT_EQ(read_text(dir / "tex.png"), "new");
+  EXPECT_EQ(read_text(dir / "image.png"), "from a temporary");
+  fs::remove_all(dir);
+}
+
+TEST(OutputFiles, AFailedWriteLeavesNoFileAndNoTemporary) {
+  auto dir = test::temp_dir("output_files_fail");
+  const std::string main = (dir / "scene.gltf").string();
+  {
+    OutputFiles files(main);
+    files.add(files.beside("scene.bin"), std::string("bin"));
+    files.add((dir / "missing" / "tex.png").string(), std::string("png"));  // its folder does not exist
+    files.add(main, std::string("main"));
+    const std::string written = files.temp_dir() + "/written";
+    { std::ofstream(written, std::ios::binary) << "x"; }
+    files.add_written(files.beside("image.png"), written);
+    EXPECT_THROW(files.commit(), Error);
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << test::files_in(dir).size() << " file(s) left";
+  fs::remove_all(dir);
+}
+
+TEST(OutputFiles, WithoutCommitNothingIsLeft) {
+  auto dir = test::temp_dir("output_files_abandon");
+  {
+    OutputFiles files((dir / "out.png").string());
+    files.add(files.main(), std::string("never written"));
+    const std::string written = (dir / ".out.png.partial").string();
+    { std::ofstream(written, std::ios::binary) << "x"; }
+    files.add_written(files.beside("depth.png"), written);
+    files.temp_dir();
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rayform
