@@ -4,7 +4,9 @@
 // touches two compact arrays and never the Scene. The triangle test is the
 // watertight one of geometry/triangle_intersect.h, evaluated four triangles at
 // a time with the very same float operations (bit-identical results, but for
-// the early accept of hits in front of every vertex: see intersect_packet).
+// the early accept of hits in front of every vertex: see intersect_packet in
+// mesh_accel_packet_test.h). Built in mesh_accel_build.cpp, traversed in
+// mesh_accel_traverse.cpp.
 #pragma once
 
 #include "accel/bvh.h"
@@ -71,19 +73,25 @@ struct MeshAccel {
 // Builds with a parallel (oneTBB) binned SAH builder; deterministic: the same
 // input gives the same structure whatever the number of threads. Triangles
 // with empty or non-finite bounds are left out. options.max_leaf_size bounds
-// the triangles of a leaf (leaves are made of packets of four), options.bins
-// the SAH candidate planes per axis.
+// the triangles of a leaf (clamped to 1..60; leaves are made of packets of
+// four), options.bins the SAH bins per axis (clamped to 2..64; fewer for
+// small ranges), options.traversal_cost the cost of a node relative to a
+// packet test. Throws std::length_error for a mesh too large for the
+// references (2^31 triangles or 2^27 packets).
 MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint32_t> indices,
                            const BvhBuildOptions& options = {});
 
-// Closest hit in the mesh; on success lowers tmax and fills the triangle index
-// and barycentrics.
+// A hit on a mesh triangle: its original index (indices[3 * triangle + k] are
+// its vertices) and its barycentrics (the hit point is b0*p0 + b1*p1 + b2*p2,
+// as in TriangleHit).
 struct MeshHit {
   uint32_t triangle;
   float b0, b1, b2;
 };
 
-// Closest hit with ray.tmin < t < tmax (the ray's own tmax is not used).
+// Closest hit in the mesh with ray.tmin < t < tmax (the ray's own tmax is not
+// used); on success lowers tmax to the hit's t, fills *hit and returns true,
+// else leaves both unchanged.
 bool intersect_mesh(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hit);
 
 // Whether some triangle lies on the ray with ray.tmin < t < ray.tmax.

@@ -1,10 +1,32 @@
-// Traversal kernels of MeshAccel (closest hit and any hit), included by
-// mesh_accel.cpp once per node-test flavour (no include guard): the including
-// namespace provides NodeRay and node_hits<Oct>(node, node_ray, tmax,
-// t_enter), which returns the mask of the eight children whose box the ray
-// enters before tmax; TriRay, intersect_packet and octant come from
-// mesh_accel.cpp. Each kernel is instantiated for the eight octants of the
-// ray direction (constant plane rows in the node test).
+// Traversal kernels of MeshAccel: closest hit (intersect) and any hit
+// (occluded), each instantiated for the eight octants of the ray direction
+// (constant plane rows in the node test). The triangle side comes from
+// mesh_accel_packet_test.h (TriRay, intersect_packet), the node side from
+// mesh_accel_node_test.h (NodeRay, node_hits<Oct>, octant, pop_lowest_bit,
+// prefetch_child, stack_size).
+//
+// No include guard: mesh_accel_traverse.cpp includes this file once per
+// node-test flavour, defining RAYFORM_MESH_KERNEL_FLAVOUR to the namespace of
+// mesh_accel_node_test.h whose NodeRay and node_hits the kernels use
+// (kernel_portable, the default, or kernel_avx2, included under
+// #pragma GCC target("avx2")); the kernels are defined in that namespace.
+#include "accel/mesh_accel.h"
+#include "accel/mesh_accel_node_test.h"
+#include "accel/mesh_accel_packet_test.h"
+#include "accel/simd4.h"
+#include "geometry/bounds.h"
+#include "geometry/ray.h"
+
+#include <cstdint>
+#include <utility>
+
+#ifndef RAYFORM_MESH_KERNEL_FLAVOUR
+#define RAYFORM_MESH_KERNEL_FLAVOUR kernel_portable
+#endif
+
+namespace rayform {
+namespace {
+namespace RAYFORM_MESH_KERNEL_FLAVOUR {
 
 // node_hits with the node's child references prefetched meanwhile (they are
 // read only after the box test).
@@ -181,3 +203,9 @@ inline bool occluded(const MeshAccel& m, const Ray& ray) {
     default: return occluded_octant<7>(m, nr, tr, ray.tmax);
   }
 }
+
+}  // namespace RAYFORM_MESH_KERNEL_FLAVOUR
+}  // namespace
+}  // namespace rayform
+
+#undef RAYFORM_MESH_KERNEL_FLAVOUR
