@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace rayform {
 
@@ -19,9 +20,9 @@ Mesh tessellate_sphere(const Sphere& sphere, int segments) {
   // Angles in double so that the rings are symmetric to the last bit.
   add(vec3(0.f, 1.f, 0.f));  // north pole: vertex 0
   for (int i = 1; i < bands; ++i) {
-    const double theta = M_PI * double(i) / double(bands);
+    const double theta = std::numbers::pi * double(i) / double(bands);
     for (int j = 0; j < segments; ++j) {
-      const double phi = 2.0 * M_PI * double(j) / double(segments);
+      const double phi = 2.0 * std::numbers::pi * double(j) / double(segments);
       dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
       add(vec3(glm::normalize(d)));
     }
