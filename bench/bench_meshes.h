@@ -189,7 +189,8 @@ inline bool embree_memory_monitor(void* user, ssize_t bytes, bool /*post*/) {
   auto* m = static_cast<EmbreeMemory*>(user);
   int64_t now = (m->current += bytes);
   int64_t p = m->peak.load();
-  while (now > p && !m->peak.compare_exchange_weak(p, now)) {}
+  while (now > p && !m->peak.compare_exchange_weak(p, now)) {
+  }
   return true;
 }
 
@@ -224,10 +225,10 @@ struct EmbreeScene {
     rtcSetSceneBuildQuality(scene, quality);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(g, quality);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(vec3), m.vertex_count());
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                               3 * sizeof(uint32_t), m.triangle_count());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0, sizeof(vec3),
+                               m.vertex_count());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0, 3 * sizeof(uint32_t),
+                               m.triangle_count());
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
@@ -251,8 +252,12 @@ struct EmbreeScene {
 
 inline RTCRayHit to_embree(const Ray& r) {
   RTCRayHit rh;
-  rh.ray.org_x = r.origin.x; rh.ray.org_y = r.origin.y; rh.ray.org_z = r.origin.z;
-  rh.ray.dir_x = r.direction.x; rh.ray.dir_y = r.direction.y; rh.ray.dir_z = r.direction.z;
+  rh.ray.org_x = r.origin.x;
+  rh.ray.org_y = r.origin.y;
+  rh.ray.org_z = r.origin.z;
+  rh.ray.dir_x = r.direction.x;
+  rh.ray.dir_y = r.direction.y;
+  rh.ray.dir_z = r.direction.z;
   rh.ray.tnear = r.tmin;
   rh.ray.tfar = r.tmax;
   rh.ray.time = 0.f;

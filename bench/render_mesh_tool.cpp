@@ -17,9 +17,7 @@
 using namespace rayform;
 
 namespace {
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -44,8 +42,8 @@ int main(int argc, char** argv) {
 
     double sum = 0.;
     for (float v : r.color.pixels) sum += v;
-    size_t mesh_bytes = m.positions.size() * sizeof(vec3) + m.normals.size() * sizeof(vec3) +
-                        m.indices.size() * sizeof(uint32_t);
+    size_t mesh_bytes =
+        m.positions.size() * sizeof(vec3) + m.normals.size() * sizeof(vec3) + m.indices.size() * sizeof(uint32_t);
     std::printf("triangles        %zu\n", m.triangle_count());
     std::printf("mesh             %.1f MB\n", double(mesh_bytes) / 1048576.);
     std::printf("accel            %.1f MB (%.1f bytes/triangle)\n", double(p.memory_bytes()) / 1048576.,

@@ -59,8 +59,8 @@ void bm_traversal(benchmark::State& state, std::string mesh, std::string kind, b
   const Agreement& a = set.agreement;
   size_t mismatches = closest ? a.closest_mismatches : a.any_mismatches;
   if (mismatches * 1000 > rays.size()) {
-    std::string msg = "ours and Embree disagree on " + std::to_string(mismatches) + " of " +
-                      std::to_string(rays.size()) + " rays";
+    std::string msg =
+        "ours and Embree disagree on " + std::to_string(mismatches) + " of " + std::to_string(rays.size()) + " rays";
     state.SkipWithError(msg.c_str());
     return;
   }

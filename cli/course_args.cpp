@@ -10,9 +10,9 @@
 namespace rayform::cli {
 namespace {
 
-const std::set<std::string> course_flags = {"-input", "-size", "-output", "-depth", "-normals", "-dialect",
-                                            "-bounces", "-shadows", "-threads", "-quiet", "-albedo",
-                                            "-jitter", "-filter", "-spp", "-stats", "-generic"};
+const std::set<std::string> course_flags = {"-input",   "-size",    "-output",  "-depth",  "-normals", "-dialect",
+                                            "-bounces", "-shadows", "-threads", "-quiet",  "-albedo",  "-jitter",
+                                            "-filter",  "-spp",     "-stats",   "-generic"};
 
 struct Args {
   const std::vector<std::string>& v;
@@ -34,7 +34,8 @@ struct Args {
     std::string s = take(flag, what);
     char* end = nullptr;
     double x = std::strtod(s.c_str(), &end);
-    if (s.empty() || *end != '\0' || !std::isfinite(x)) throw UsageError(flag + " expects " + what + ", got '" + s + "'");
+    if (s.empty() || *end != '\0' || !std::isfinite(x))
+      throw UsageError(flag + " expects " + what + ", got '" + s + "'");
     return float(x);
   }
 };
@@ -55,9 +56,13 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
   Args a{v};
   while (a.i < v.size()) {
     std::string f = v[a.i++];
-    if (f == "-input") { job.input = a.take(f, "a scene file"); has_input = true; }
-    else if (f == "-output") { job.output = a.take(f, "an image file"); has_output = true; }
-    else if (f == "-size") {
+    if (f == "-input") {
+      job.input = a.take(f, "a scene file");
+      has_input = true;
+    } else if (f == "-output") {
+      job.output = a.take(f, "an image file");
+      has_output = true;
+    } else if (f == "-size") {
       job.render.width = a.integer(f, "a width and a height in pixels");
       job.render.height = a.integer(f, "a width and a height in pixels");
       has_size = true;
@@ -80,8 +85,7 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     else if (f == "-filter") job.render.filter = PixelFilter::tent;
     else if (f == "-spp") {
       job.render.spp = a.integer(f, "a number of samples per pixel");
-    }
-    else if (f == "-threads") {
+    } else if (f == "-threads") {
       job.render.threads = a.integer(f, "a number of threads");
     } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
     else if (f == "-stats") job.stats = true;

@@ -7,17 +7,21 @@
 namespace rayform::cli {
 
 void add_info_command(CLI::App& app) {
-  struct Args { std::string scene, dialect; };
+  struct Args {
+    std::string scene, dialect;
+  };
   auto a = std::make_shared<Args>();
   CLI::App* info = app.add_subcommand("info", "Print counts and bounds of a scene, and the glTF extensions it uses");
   info->add_option("scene", a->scene, "Scene file")->required();
-  info->add_option("--dialect", a->dialect, "Course dialect (default: detected)")->check(CLI::IsMember({"2012", "2019"}));
+  info->add_option("--dialect", a->dialect, "Course dialect (default: detected)")
+      ->check(CLI::IsMember({"2012", "2019"}));
   info->callback([a] {
     LoadedScene loaded = load_scene(a->scene, LoadOptions{dialect_from_string(a->dialect)});
     for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
     std::cout << "scene:       " << a->scene << "\n";
     if (loaded.format == SceneFormat::course_txt)
-      std::cout << "format:      course .txt, dialect " << (loaded.dialect == CourseDialect::v2019 ? "2019" : "2012") << "\n";
+      std::cout << "format:      course .txt, dialect " << (loaded.dialect == CourseDialect::v2019 ? "2019" : "2012")
+                << "\n";
     std::cout << format_scene_stats(scene_stats(loaded.scene));
     if (!loaded.extensions.empty()) {
       std::cout << "extensions:\n";

@@ -85,15 +85,19 @@ void add_render_command(CLI::App& app) {
   render->add_option("--depth", a->depth, "Depth image MIN:MAX:FILE");
   render->add_option("--normals", job.normals, "Normals image");
   render->add_option("--albedo", job.albedo, "Unlit surface colour image");
-  render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")->check(CLI::IsMember({"2012", "2019"}));
+  render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")
+      ->check(CLI::IsMember({"2012", "2019"}));
   render->add_option("--camera", job.render.camera, "Camera index");
   render->add_option("--threads", job.render.threads, "Worker threads (0: all)");
   render->add_flag("--shadows", job.render.shadows, "Shadow rays to every light");
   render->add_option("--bounces", job.render.bounces, "Reflection/refraction depth");
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
-  render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")->check(CLI::IsMember({"box", "tent"}))->capture_default_str();
+  render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
+      ->check(CLI::IsMember({"box", "tent"}))
+      ->capture_default_str();
   render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
-      ->check(CLI::IsMember({"auto", "raw", "srgb"}))->capture_default_str();
+      ->check(CLI::IsMember({"auto", "raw", "srgb"}))
+      ->capture_default_str();
   render->add_option("--look-from", a->look_from, "Camera position X,Y,Z");
   render->add_option("--look-at", a->look_at, "Point the camera looks at X,Y,Z");
   render->add_option("--up", a->up, "Camera up vector X,Y,Z");
@@ -109,7 +113,7 @@ void add_render_command(CLI::App& app) {
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
     a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
-    a->job.color = a->color == "raw" ? RenderJob::ColorEncoding::raw
+    a->job.color = a->color == "raw"    ? RenderJob::ColorEncoding::raw
                    : a->color == "srgb" ? RenderJob::ColorEncoding::srgb
                                         : RenderJob::ColorEncoding::automatic;
     if (!a->look_from.empty()) a->job.look_from = parse_vec3(a->look_from, "--look-from");
@@ -118,8 +122,7 @@ void add_render_command(CLI::App& app) {
     if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
     if (a->fov != 0.f) a->job.fov = a->fov;
     // The one check of the render parameters (render.h), under this command's flag names.
-    if (std::string problem = render_options_problem(a->job.render); !problem.empty())
-      throw UsageError("--" + problem);
+    if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);
   });
 }

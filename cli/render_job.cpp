@@ -52,7 +52,8 @@ void check_output_path(const std::string& path, const char* what) {
     throw Error(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
                 "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
   fs::path dir = fs::path(path).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir)) throw Error(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
+  if (!dir.empty() && !fs::is_directory(dir))
+    throw Error(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
 }
 
 void run_render_job(const RenderJob& job) {
@@ -60,7 +61,8 @@ void run_render_job(const RenderJob& job) {
   if (job.depth) {
     check_output_path(job.depth->file, "depth");
     if (!(job.depth->max > job.depth->min))
-      throw Error("depth range must have MAX > MIN, got " + std::to_string(job.depth->min) + " .. " + std::to_string(job.depth->max));
+      throw Error("depth range must have MAX > MIN, got " + std::to_string(job.depth->min) + " .. " +
+                  std::to_string(job.depth->max));
   }
   if (!job.normals.empty()) check_output_path(job.normals, "normals");
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");

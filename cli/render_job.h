@@ -32,7 +32,7 @@ struct RenderJob {
   std::optional<vec3> look_from, look_at, up, background;
   std::optional<float> fov;
   bool quiet = false;
-  bool stats = false;  // print timings and counts on stderr
+  bool stats = false;         // print timings and counts on stderr
   bool flat_normals = false;  // OBJ: missing normals faceted
   int gltf_scene = -1;        // glTF: scene index (-1: default)
 };

@@ -16,8 +16,8 @@ enum class SceneFormat { course_txt, obj, gltf };
 
 struct LoadOptions {
   std::optional<CourseDialect> dialect;  // course scenes only (keep first: callers brace-initialise it)
-  bool flat_normals = false;  // OBJ: normals missing from the file are faceted, not smooth
-  int gltf_scene = -1;        // glTF: the scene to load; -1: the file's default scene
+  bool flat_normals = false;             // OBJ: normals missing from the file are faceted, not smooth
+  int gltf_scene = -1;                   // glTF: the scene to load; -1: the file's default scene
 };
 
 struct LoadedScene {

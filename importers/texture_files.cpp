@@ -63,8 +63,8 @@ Pixels8 texture_pixels(const Texture& t) {
   p.data.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
   for (size_t i = 0, n = size_t(p.width) * size_t(p.height); i < n; ++i)
     for (int k = 0; k < p.channels; ++k)
-      p.data[i * size_t(p.channels) + size_t(k)] = uint8_t(
-          std::lround(std::clamp(img.pixels[i * size_t(img.channels) + size_t(k)], 0.f, 1.f) * 255.f));
+      p.data[i * size_t(p.channels) + size_t(k)] =
+          uint8_t(std::lround(std::clamp(img.pixels[i * size_t(img.channels) + size_t(k)], 0.f, 1.f) * 255.f));
   return p;
 }
 
@@ -78,8 +78,7 @@ void append_bytes(void* context, void* data, int size) {
 
 std::vector<uint8_t> encode_png(const Pixels8& p) {
   std::vector<uint8_t> out;
-  if (!stbi_write_png_to_func(append_bytes, &out, p.width, p.height, p.channels, p.data.data(),
-                              p.width * p.channels))
+  if (!stbi_write_png_to_func(append_bytes, &out, p.width, p.height, p.channels, p.data.data(), p.width * p.channels))
     throw Error("cannot encode a PNG image");
   return out;
 }

@@ -44,11 +44,10 @@ inline std::vector<std::string> files_in(const std::filesystem::path& dir) {
 }  // namespace rayform::test
 
 // Skips the test (with the reason) when ../shared is absent; in CI it must be there.
-#define RAYFORM_REQUIRE_SHARED()                                                                  \
-  do {                                                                                            \
-    if (!::rayform::test::shared_available()) {                                                   \
-      if (std::getenv("CI")) FAIL() << "RAYFORM_SHARED not found at " << ::rayform::test::shared_dir(); \
-      GTEST_SKIP() << "third-party data not found at " << ::rayform::test::shared_dir()           \
-                   << " (set RAYFORM_SHARED)";                                                    \
-    }                                                                                             \
+#define RAYFORM_REQUIRE_SHARED()                                                                                    \
+  do {                                                                                                              \
+    if (!::rayform::test::shared_available()) {                                                                     \
+      if (std::getenv("CI")) FAIL() << "RAYFORM_SHARED not found at " << ::rayform::test::shared_dir();             \
+      GTEST_SKIP() << "third-party data not found at " << ::rayform::test::shared_dir() << " (set RAYFORM_SHARED)"; \
+    }                                                                                                               \
   } while (0)

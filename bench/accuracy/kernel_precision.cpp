@@ -37,22 +37,36 @@ using ld = long double;
 
 namespace tk {  // templated copies of the kernels
 
-template <class T> using v3 = glm::vec<3, T, glm::defaultp>;
-template <class T> struct Wider;  // where the production code steps up one precision
-template <> struct Wider<float> { using type = double; };
-template <> struct Wider<double> { using type = long double; };
-template <class T> constexpr T gamma_t(int n) {
+template <class T>
+using v3 = glm::vec<3, T, glm::defaultp>;
+template <class T>
+struct Wider;  // where the production code steps up one precision
+template <>
+struct Wider<float> {
+  using type = double;
+};
+template <>
+struct Wider<double> {
+  using type = long double;
+};
+template <class T>
+constexpr T gamma_t(int n) {
   constexpr T u = std::numeric_limits<T>::epsilon() * T(0.5);
   return (T(n) * u) / (T(1) - T(n) * u);
 }
-template <class T> int max_dim(v3<T> v) { return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2); }
+template <class T>
+int max_dim(v3<T> v) {
+  return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
+}
 
-template <class T> struct TriRay {
+template <class T>
+struct TriRay {
   v3<T> origin;
   int kx, ky, kz;
   T sx, sy, sz;
 };
-template <class T> TriRay<T> make_tri_ray(v3<T> o, v3<T> dir) {
+template <class T>
+TriRay<T> make_tri_ray(v3<T> o, v3<T> dir) {
   TriRay<T> tr;
   tr.origin = o;
   v3<T> ad = glm::abs(dir);
@@ -72,9 +86,12 @@ bool triangle(const TriRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, 
   a = v3<T>(a[r.kx], a[r.ky], a[r.kz]);
   b = v3<T>(b[r.kx], b[r.ky], b[r.kz]);
   c = v3<T>(c[r.kx], c[r.ky], c[r.kz]);
-  a.x += r.sx * a.z; a.y += r.sy * a.z;
-  b.x += r.sx * b.z; b.y += r.sy * b.z;
-  c.x += r.sx * c.z; c.y += r.sy * c.z;
+  a.x += r.sx * a.z;
+  a.y += r.sy * a.z;
+  b.x += r.sx * b.z;
+  b.y += r.sy * b.z;
+  c.x += r.sx * c.z;
+  c.y += r.sy * c.z;
   T e0 = b.x * c.y - b.y * c.x;
   T e1 = c.x * a.y - c.y * a.x;
   T e2 = a.x * b.y - a.y * b.x;
@@ -87,7 +104,9 @@ bool triangle(const TriRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, 
   T det = e0 + e1 + e2;
   if (det == T(0)) return false;
   const T max_z = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
-  a.z *= r.sz; b.z *= r.sz; c.z *= r.sz;
+  a.z *= r.sz;
+  b.z *= r.sz;
+  c.z *= r.sz;
   T t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
   if (det < T(0) && (t_scaled >= tmin * det || t_scaled <= tmax * det)) return false;
   if (det > T(0) && (t_scaled <= tmin * det || t_scaled >= tmax * det)) return false;
@@ -108,7 +127,8 @@ bool triangle(const TriRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, 
   return true;
 }
 
-template <class T> bool sphere(v3<T> origin, v3<T> direction, v3<T> center, T radius, T tmin, T tmax, T* t_hit) {
+template <class T>
+bool sphere(v3<T> origin, v3<T> direction, v3<T> center, T radius, T tmin, T tmax, T* t_hit) {
   v3<T> f = origin - center;
   T a = glm::dot(direction, direction);
   if (!(a > T(0))) return false;
@@ -121,14 +141,21 @@ template <class T> bool sphere(v3<T> origin, v3<T> direction, v3<T> center, T ra
   T r0 = q == T(0) ? T(0) : c / q;
   T r1 = q / a;
   T t0 = std::min(r0, r1), t1 = std::max(r0, r1);
-  if (t0 > tmin && t0 < tmax) { *t_hit = t0; return true; }
-  if (t1 > tmin && t1 < tmax) { *t_hit = t1; return true; }
+  if (t0 > tmin && t0 < tmax) {
+    *t_hit = t0;
+    return true;
+  }
+  if (t1 > tmin && t1 < tmax) {
+    *t_hit = t1;
+    return true;
+  }
   return false;
 }
 
 // Production: inputs float, dot products in double, t rounded to float.
 // The double variant: inputs and every step in double (no wider type).
-template <class T> bool plane(v3<T> o, v3<T> dir, v3<T> normal, T offset, T tmin, T tmax, T* t_hit) {
+template <class T>
+bool plane(v3<T> o, v3<T> dir, v3<T> normal, T offset, T tmin, T tmax, T* t_hit) {
   const double nx = normal.x, ny = normal.y, nz = normal.z;
   const double denom = nx * dir.x + ny * dir.y + nz * dir.z;
   if (denom == 0.0) return false;
@@ -272,7 +299,7 @@ std::vector<Case> sphere_cases(int n, bool hard, uint64_t seed) {
     dvec3 centre = hard ? g.log_u(1e-3, 1e6) * g.unit() : r * g.u(0, 1) * g.unit();
     dvec3 w = g.unit();
     dvec3 o = (hard && g.u() < 0.125) ? centre + r * g.u(0, 0.99) * w
-                                       : centre + (hard ? r + g.log_u(1e-4, 1e7) : r * g.log_u(2, 100)) * w;
+                                      : centre + (hard ? r + g.log_u(1e-4, 1e7) : r * g.log_u(2, 100)) * w;
     dvec3 target = centre + r * g.u(0, hard ? 1.2 : 0.999) * perpendicular(-w, g);
     dvec3 dir = glm::normalize(target - o) * (g.u() < 0.25 ? g.log_u(1e-2, 1e2) : 1.0);
     c.o = F(o);
@@ -310,7 +337,8 @@ std::vector<Case> plane_cases(int n, bool hard, uint64_t seed) {
 
 enum class Kind { triangle, sphere, plane };
 
-template <class T> bool run(Kind k, const Case& c, T* t) {
+template <class T>
+bool run(Kind k, const Case& c, T* t) {
   using V = tk::v3<T>;
   const V o(c.o), d(c.d);
   const T tmax = std::numeric_limits<T>::infinity();
@@ -346,7 +374,8 @@ struct Stats {
   double max_rel = 0, sum_sq = 0;
 };
 
-template <class T> Stats measure(Kind k, const std::vector<Case>& cases, const std::vector<RefHit>& ref) {
+template <class T>
+Stats measure(Kind k, const std::vector<Case>& cases, const std::vector<RefHit>& ref) {
   Stats s;
   double best = 1e300;
   volatile double sink = 0;
@@ -401,9 +430,10 @@ int main(int argc, char** argv) {
               {"plane, random", Kind::plane, false},
               {"plane, grazing 1e-7..1e-1 rad", Kind::plane, true}};
   int bad_mirror = 0;
-  std::printf("| kernel, ray set | rays | float ns/test | double ns/test | double/float time | "
-              "float wrong hit/miss | double wrong hit/miss | float max rel. error | float RMS | "
-              "double max rel. error | double RMS |\n");
+  std::printf(
+      "| kernel, ray set | rays | float ns/test | double ns/test | double/float time | "
+      "float wrong hit/miss | double wrong hit/miss | float max rel. error | float RMS | "
+      "double max rel. error | double RMS |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   uint64_t seed = 1;
   for (const Set& set : sets) {

@@ -31,7 +31,8 @@ class CourseParser {
       else if (t.text == "Background") parse_background();
       else if (t.text == "Materials") parse_materials();
       else if (t.text == "Group") {
-        if (scene_.root != invalid) warnings_.push_back(tokens_.where(t) + ": a second top-level Group replaces the first");
+        if (scene_.root != invalid)
+          warnings_.push_back(tokens_.where(t) + ": a second top-level Group replaces the first");
         scene_.root = parse_group(t);
       } else {
         tokens_.fail(t, "expected PerspectiveCamera, Lights, Background, Materials or Group");
@@ -51,8 +52,9 @@ class CourseParser {
     // Check every MaterialIndex against the final material count.
     for (const auto& [node, token] : material_refs_)
       if (scene_.nodes[node].material >= int(scene_.materials.size()))
-        tokens_.fail(token, "MaterialIndex " + std::to_string(scene_.nodes[node].material) + " is out of range: the scene has " +
-                                std::to_string(scene_.materials.size()) + " materials");
+        tokens_.fail(token, "MaterialIndex " + std::to_string(scene_.nodes[node].material) +
+                                " is out of range: the scene has " + std::to_string(scene_.materials.size()) +
+                                " materials");
     out.scene = std::move(scene_);
     out.warnings = std::move(warnings_);
     return out;
@@ -65,7 +67,8 @@ class CourseParser {
   void parse_block(const Token& opener, const char* expected_keys, Fn&& on_key) {
     tokens_.expect("{", opener.text);
     for (;;) {
-      Token k = tokens_.next_or_fail(std::string("'}' to close ") + opener.text + " opened at " + tokens_.line_col(opener));
+      Token k =
+          tokens_.next_or_fail(std::string("'}' to close ") + opener.text + " opened at " + tokens_.line_col(opener));
       if (k.text == "}") return;
       if (!on_key(k)) tokens_.fail(k, std::string("expected one of ") + expected_keys + " or '}' in " + opener.text);
     }
@@ -81,8 +84,10 @@ class CourseParser {
       if (k.text == "center") c.center = tokens_.vec3_value();
       else if (k.text == "direction") c.direction = tokens_.vec3_value();
       else if (k.text == "up") c.up = tokens_.vec3_value();
-      else if (k.text == "angle") { c.fov_deg = tokens_.number(); has_angle = true; }
-      else return false;
+      else if (k.text == "angle") {
+        c.fov_deg = tokens_.number();
+        has_angle = true;
+      } else return false;
       return true;
     });
     if (glm::length(c.direction) == 0.f) tokens_.fail(opener, "camera direction must not be zero");
@@ -133,8 +138,8 @@ class CourseParser {
       if (int(lights.size()) > n) tokens_.fail(t, "more lights than numLights " + std::to_string(n) + " declares");
     }
     if (int(lights.size()) != n)
-      tokens_.fail(count_token, "numLights is " + std::to_string(n) + " but " + std::to_string(lights.size()) +
-                                    " lights follow");
+      tokens_.fail(count_token,
+                   "numLights is " + std::to_string(n) + " but " + std::to_string(lights.size()) + " lights follow");
     scene_.lights = std::move(lights);
     declared_no_lights_ = n == 0;
   }
@@ -158,7 +163,8 @@ class CourseParser {
     static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
     for (int i = 0; i < 6; ++i) {
       fs::path f = dir / (std::string(faces[i]) + ".png");
-      if (!fs::exists(f)) tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
+      if (!fs::exists(f))
+        tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
       Texture tex;
       tex.name = faces[i];
       tex.path = f.string();
@@ -229,7 +235,8 @@ class CourseParser {
       if (fs::exists(beside)) return beside;
       if (fs::exists(p)) return p;
     }
-    tokens_.fail(t, std::string("cannot find ") + what + " '" + name + "' (looked beside the scene file and in the working directory)");
+    tokens_.fail(t, std::string("cannot find ") + what + " '" + name +
+                        "' (looked beside the scene file and in the working directory)");
   }
 
   int add_node(Node n) {
@@ -266,8 +273,7 @@ class CourseParser {
         continue;
       }
       children.push_back(parse_object(t));
-      if (int(children.size()) > n)
-        tokens_.fail(t, "more objects than numObjects " + std::to_string(n) + " declares");
+      if (int(children.size()) > n) tokens_.fail(t, "more objects than numObjects " + std::to_string(n) + " declares");
     }
     if (int(children.size()) != n)
       tokens_.fail(count_token, "numObjects is " + std::to_string(n) + " but the group holds " +
@@ -300,8 +306,10 @@ class CourseParser {
       bool has_radius = false;
       parse_block(t, "center, radius", [&](const Token& k) {
         if (k.text == "center") s.center = tokens_.vec3_value();
-        else if (k.text == "radius") { s.radius = tokens_.number(); has_radius = true; }
-        else return false;
+        else if (k.text == "radius") {
+          s.radius = tokens_.number();
+          has_radius = true;
+        } else return false;
         return true;
       });
       if (has_radius && !(s.radius > 0.f)) tokens_.fail(t, "sphere radius must be positive");
@@ -348,7 +356,8 @@ class CourseParser {
       return shape_node(ShapeKind::mesh, mesh, "mesh");
     }
     if (t.text == "Transform") return parse_transform(t);
-    tokens_.fail(t, "expected an object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform), MaterialIndex or '}'");
+    tokens_.fail(t,
+                 "expected an object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform), MaterialIndex or '}'");
   }
 
   int parse_transform(const Token& opener) {
@@ -385,8 +394,10 @@ class CourseParser {
         if (child != invalid) tokens_.fail(t, "a Transform holds exactly one object; expected '}'");
         child = parse_object(t);
       } else {
-        tokens_.fail(t, "expected a transform (Scale, UniformScale, Translate, XRotate, YRotate, ZRotate, Rotate, "
-                        "Matrix4f), one object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform) or '}' in Transform");
+        tokens_.fail(
+            t,
+            "expected a transform (Scale, UniformScale, Translate, XRotate, YRotate, ZRotate, Rotate, "
+            "Matrix4f), one object (Group, Sphere, Plane, Triangle, TriangleMesh, Transform) or '}' in Transform");
       }
     }
     if (child == invalid) tokens_.fail(opener, "Transform holds no object");
@@ -424,7 +435,7 @@ class CourseParser {
   std::vector<std::string> warnings_;
   bool declared_no_lights_ = false;
   int current_material_ = invalid;  // MaterialIndex stays in force across groups
-  int depth_ = 0;                    // Groups and Transforms open around the parser
+  int depth_ = 0;                   // Groups and Transforms open around the parser
   Token current_material_token_;
   std::vector<std::pair<int, Token>> material_refs_;
   std::map<std::string, int> mesh_cache_, texture_cache_;
@@ -433,8 +444,9 @@ class CourseParser {
 }  // namespace
 
 CourseScene parse_course_scene(std::string_view text, const std::string& path, const CourseReadOptions& options) {
-  CourseDialect dialect = options.dialect ? *options.dialect
-                                          : (course_text_uses_2019_keywords(text) ? CourseDialect::v2019 : CourseDialect::v2012);
+  CourseDialect dialect = options.dialect
+                              ? *options.dialect
+                              : (course_text_uses_2019_keywords(text) ? CourseDialect::v2019 : CourseDialect::v2012);
   return CourseParser(text, path, dialect).parse();
 }
 

@@ -12,26 +12,40 @@ CourseTokenizer::CourseTokenizer(std::string_view text, std::string path) : path
   int line = 1, col = 1;
   size_t i = 0;
   auto advance = [&](char c) {
-    if (c == '\n') { ++line; col = 1; } else { ++col; }
+    if (c == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
   };
   while (i < text.size()) {
     char c = text[i];
     if (c == '#') {
-      while (i < text.size() && text[i] != '\n') { advance(text[i]); ++i; }
+      while (i < text.size() && text[i] != '\n') {
+        advance(text[i]);
+        ++i;
+      }
       continue;
     }
-    if (std::isspace(static_cast<unsigned char>(c)) || c == '\0') { advance(c); ++i; continue; }
+    if (std::isspace(static_cast<unsigned char>(c)) || c == '\0') {
+      advance(c);
+      ++i;
+      continue;
+    }
     Token t;
     t.line = line;
     t.column = col;
     if (c == '{' || c == '}') {
       t.text = std::string(1, c);
-      advance(c); ++i;
+      advance(c);
+      ++i;
     } else {
       size_t start = i;
-      while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) && text[i] != '{' && text[i] != '}' &&
-             text[i] != '#' && text[i] != '\0') {
-        advance(text[i]); ++i;
+      while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) && text[i] != '{' &&
+             text[i] != '}' && text[i] != '#' && text[i] != '\0') {
+        advance(text[i]);
+        ++i;
       }
       t.text = std::string(text.substr(start, i - start));
     }
@@ -58,9 +72,7 @@ std::string CourseTokenizer::line_col(const Token& t) const {
 }
 std::string CourseTokenizer::where(const Token& t) const { return path_ + ":" + line_col(t); }
 
-void CourseTokenizer::fail(const Token& t, const std::string& message) const {
-  throw Error(where(t) + ": " + message);
-}
+void CourseTokenizer::fail(const Token& t, const std::string& message) const { throw Error(where(t) + ": " + message); }
 
 void CourseTokenizer::expect(std::string_view word, std::string_view context) {
   std::string what = "'";  // (built by appends: GCC 12 warns falsely on "'" + string)

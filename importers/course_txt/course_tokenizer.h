@@ -29,9 +29,12 @@ class CourseTokenizer {
   const Token& last() const { return tokens_[pos_ - 1]; }
 
   void expect(std::string_view word, std::string_view context);
-  float number();        // a finite number
-  int count();           // a non-negative integer
-  vec3 vec3_value() { float x = number(), y = number(), z = number(); return vec3(x, y, z); }
+  float number();  // a finite number
+  int count();     // a non-negative integer
+  vec3 vec3_value() {
+    float x = number(), y = number(), z = number();
+    return vec3(x, y, z);
+  }
 
   std::string where(const Token& t) const;     // "file:line:column"
   std::string line_col(const Token& t) const;  // "line:column"

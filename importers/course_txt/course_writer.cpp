@@ -80,8 +80,9 @@ class CourseBuilder {
     }
     if (s_.lights.empty() && !course_source) {
       add_headlight(s_);
-      note("the source has no light: added a white directional headlight along the view (the course would light a "
-           "scene without lights by an ambient light of 1)");
+      note(
+          "the source has no light: added a white directional headlight along the view (the course would light a "
+          "scene without lights by an ambient light of 1)");
     }
     dialect_ = options_.dialect ? *options_.dialect : needed_dialect();
 
@@ -152,8 +153,9 @@ class CourseBuilder {
            " (the course has perspective cameras only)");
     }
     if (c.aspect == Camera::Aspect::fit)
-      note("camera: the course stretches the view to the image's shape (no aspect correction): the same picture for "
-           "square images only");
+      note(
+          "camera: the course stretches the view to the image's shape (no aspect correction): the same picture for "
+          "square images only");
     if (dialect_ == CourseDialect::v2012 && raw_up_matters(c))
       note("camera: its raw up vector (2019) becomes the orthonormal one in the 2012 dialect");
     o << "PerspectiveCamera {\n"
@@ -169,13 +171,14 @@ class CourseBuilder {
     int spots = 0, ranges = 0, falloffs = 0;
     for (const Light& l : s_.lights) {
       if (l.kind == Light::Kind::directional) {
-        o << "    DirectionalLight {\n        direction " << format_vec3(l.direction) << "\n        color " << format_vec3(l.color)
-          << "\n    }\n";
+        o << "    DirectionalLight {\n        direction " << format_vec3(l.direction) << "\n        color "
+          << format_vec3(l.color) << "\n    }\n";
         continue;
       }
       if (l.kind == Light::Kind::spot) ++spots;
       if (l.range > 0.f) ++ranges;
-      o << "    PointLight {\n        position " << format_vec3(l.position) << "\n        color " << format_vec3(l.color) << "\n";
+      o << "    PointLight {\n        position " << format_vec3(l.position) << "\n        color "
+        << format_vec3(l.color) << "\n";
       if (l.falloff > 0.f) {
         if (dialect_ == CourseDialect::v2019) o << "        falloff " << format_float(l.falloff) << "\n";
         else ++falloffs;
@@ -186,7 +189,8 @@ class CourseBuilder {
     if (spots) note(std::to_string(spots) + " spot light(s) written as point lights (the course has no spot lights)");
     if (ranges) note(std::to_string(ranges) + " light range(s) dropped (the course has none)");
     if (falloffs)
-      note(std::to_string(falloffs) + " point light(s) lose their falloff: the 2012 dialect does not attenuate (write "
+      note(std::to_string(falloffs) +
+           " point light(s) lose their falloff: the 2012 dialect does not attenuate (write "
            "--dialect 2019 to keep it)");
     if (s_.lights.empty())
       note("no lights: the course lights such a scene by an ambient light of 1 (each pixel shows its diffuse colour)");
@@ -201,7 +205,10 @@ class CourseBuilder {
       bool ok = true;
       for (int i = 0; i < 6 && ok; ++i) {
         int t = b.cube_map[size_t(i)];
-        if (t < 0 || size_t(t) >= s_.textures.size()) { ok = false; break; }
+        if (t < 0 || size_t(t) >= s_.textures.size()) {
+          ok = false;
+          break;
+        }
         try {
           std::string ext;
           std::vector<uint8_t> bytes = texture_file(s_.textures[size_t(t)], {"png"}, &ext);
@@ -251,22 +258,27 @@ class CourseBuilder {
     if (need_default_) o << "    PhongMaterial {\n        diffuseColor 1 1 1\n    }\n";
     o << "}\n\n";
     if (!emissive.empty()) note("materials " + quoted_list(emissive) + ": emission dropped (the course has none)");
-    if (!cutouts.empty()) note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
+    if (!cutouts.empty())
+      note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
     if (!two_sided.empty())
-      note("materials " + quoted_list(two_sided) + ": back faces are shaded with their normals as given, not reversed " +
+      note("materials " + quoted_list(two_sided) +
+           ": back faces are shaded with their normals as given, not reversed " +
            "towards the viewer (the course format's convention)");
     if (!single_sided.empty())
-      note("materials " + quoted_list(single_sided) + ": single-sided becomes double-sided (the course has no such flag)");
+      note("materials " + quoted_list(single_sided) +
+           ": single-sided becomes double-sided (the course has no such flag)");
     if (!modulated.empty())
       note("materials " + quoted_list(modulated) +
            ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
-    if (!bumps_dropped.empty()) note("materials " + quoted_list(bumps_dropped) + ": bump maps dropped (2012 dialect; write --dialect 2019)");
+    if (!bumps_dropped.empty())
+      note("materials " + quoted_list(bumps_dropped) + ": bump maps dropped (2012 dialect; write --dialect 2019)");
     if (need_default_)
       note("shapes without a material follow a MaterialIndex: they use an added white material " +
            std::to_string(s_.materials.size()));
     for (const Mesh& m : s_.meshes)
       if (!m.colors.empty()) vertex_colored.insert(m.name);
-    if (!vertex_colored.empty()) note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
+    if (!vertex_colored.empty())
+      note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
   }
 
   // The BMP file of a Scene texture ("" when it cannot be read).
@@ -289,7 +301,8 @@ class CourseBuilder {
           }
       }
     } catch (const Error& e) {
-      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() + "); materials using it are untextured");
+      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+           "); materials using it are untextured");
       file.clear();
     }
     if (t.srgb) srgb_.insert(t.name);
@@ -426,7 +439,8 @@ class CourseBuilder {
   }
 
   const Node& node(int i) const {
-    if (i < 0 || size_t(i) >= s_.nodes.size()) throw Error(path_ + ": scene node " + std::to_string(i) + " does not exist");
+    if (i < 0 || size_t(i) >= s_.nodes.size())
+      throw Error(path_ + ": scene node " + std::to_string(i) + " does not exist");
     return s_.nodes[size_t(i)];
   }
 
@@ -496,14 +510,18 @@ class CourseBuilder {
     switch (n.shape_kind) {
       case ShapeKind::sphere: {
         const Sphere& s = s_.spheres.at(size_t(n.shape));
-        o << pad << "Sphere {\n" << pad << "    center " << format_vec3(s.center) << "\n" << pad << "    radius "
-          << format_float(s.radius) << "\n" << pad << "}\n";
+        o << pad << "Sphere {\n"
+          << pad << "    center " << format_vec3(s.center) << "\n"
+          << pad << "    radius " << format_float(s.radius) << "\n"
+          << pad << "}\n";
         break;
       }
       case ShapeKind::plane: {
         const Plane& p = s_.planes.at(size_t(n.shape));
-        o << pad << "Plane {\n" << pad << "    normal " << format_vec3(p.normal) << "\n" << pad << "    offset "
-          << format_float(p.offset) << "\n" << pad << "}\n";
+        o << pad << "Plane {\n"
+          << pad << "    normal " << format_vec3(p.normal) << "\n"
+          << pad << "    offset " << format_float(p.offset) << "\n"
+          << pad << "}\n";
         break;
       }
       case ShapeKind::triangle: {
@@ -514,8 +532,9 @@ class CourseBuilder {
         break;
       }
       case ShapeKind::mesh:
-        o << pad << "TriangleMesh {\n" << pad << "    obj_file " << mesh_file(n.shape, part, material) << "\n" << pad
-          << "}\n";
+        o << pad << "TriangleMesh {\n"
+          << pad << "    obj_file " << mesh_file(n.shape, part, material) << "\n"
+          << pad << "}\n";
         break;
     }
   }
@@ -605,16 +624,21 @@ class CourseBuilder {
     if (!normals_changed_.empty())
       note("meshes " + quoted_list(normals_changed_) +
            ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
-           "by up to " + format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
+           "by up to " +
+           format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
     if (!baked_uvs_.empty())
       note("materials " + quoted_list(baked_uvs_) + ": uv transform baked into the uvs of their meshes' OBJ files");
     if (!srgb_.empty())
-      note("textures " + quoted_list(srgb_) + ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
+      note("textures " + quoted_list(srgb_) +
+           ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
     if (!half_texel_.empty())
-      note("textures " + quoted_list(half_texel_) + ": the course samples with texel centres on whole numbers (half a texel off "
+      note("textures " + quoted_list(half_texel_) +
+           ": the course samples with texel centres on whole numbers (half a texel off "
            "the usual convention)");
-    if (!repeat_.empty()) note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
-    if (!nearest_.empty()) note("textures " + quoted_list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
+    if (!repeat_.empty())
+      note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
+    if (!nearest_.empty())
+      note("textures " + quoted_list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
     if (!alpha_dropped_.empty()) note("textures " + quoted_list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
   }
 

@@ -188,8 +188,8 @@ GltfAccessors::View GltfAccessors::view(int v, const std::string& where) {
            std::to_string(model_.buffers.size()) + " buffers)");
     const tinygltf::Buffer& buf = model_.buffers[size_t(b)];
     if (!fits_in(offset, length, buf.data.size()))
-      fail(bw + ": bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + " lie past the end of " +
-           gltf_path("buffers", b) + " (" + std::to_string(buf.data.size()) + " bytes)");
+      fail(bw + ": bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+           " lie past the end of " + gltf_path("buffers", b) + " (" + std::to_string(buf.data.size()) + " bytes)");
     return buf.data.data() + offset;
   };
   auto ext = bv.extensions.find("EXT_meshopt_compression");
@@ -219,9 +219,8 @@ GltfAccessors::View GltfAccessors::view(int v, const std::string& where) {
     }
     const unsigned char* bytes = buffer_bytes(e.Get("buffer").GetNumberAsInt(), offset, length, ew);
     const std::string fw = file_ + ": " + ew;
-    std::vector<uint8_t> decoded =
-        decode_meshopt(bytes, length, count, stride, parse_meshopt_mode(mode, fw + ".mode"),
-                       parse_meshopt_filter(filter, fw + ".filter"), fw);
+    std::vector<uint8_t> decoded = decode_meshopt(bytes, length, count, stride, parse_meshopt_mode(mode, fw + ".mode"),
+                                                  parse_meshopt_filter(filter, fw + ".filter"), fw);
     cached = decoded_views_.emplace(v, std::move(decoded)).first;
   }
   const std::vector<uint8_t>& d = cached->second;
@@ -231,8 +230,8 @@ GltfAccessors::View GltfAccessors::view(int v, const std::string& where) {
   return View{d.data(), bv.byteLength, bv.byteStride};
 }
 
-const tinygltf::Accessor& GltfAccessors::check_format(int a, const std::string& where,
-                                                    std::initializer_list<int> types, uint32_t formats) const {
+const tinygltf::Accessor& GltfAccessors::check_format(int a, const std::string& where, std::initializer_list<int> types,
+                                                      uint32_t formats) const {
   const tinygltf::Accessor& acc = accessor(a, where);
   const std::string aw = where + " (" + gltf_path("accessors", a) + ")";
   const bool type_ok = std::find(types.begin(), types.end(), acc.type) != types.end();
@@ -255,11 +254,12 @@ GltfAccessors::Floats GltfAccessors::read_floats(int a, const std::string& where
   out.count = acc.count;
   const int cs = component_size(acc.componentType);
   const size_t nc = size_t(out.components);
-  read_elements(acc, aw, out.components, [&](size_t count) { out.values.assign(count * nc, 0.f); },
-                [&](size_t i, const unsigned char* p) {
-                  for (size_t c = 0; c < nc; ++c)
-                    out.values[i * nc + c] = gltf_component_value(p + c * size_t(cs), acc.componentType, acc.normalized);
-                });
+  read_elements(
+      acc, aw, out.components, [&](size_t count) { out.values.assign(count * nc, 0.f); },
+      [&](size_t i, const unsigned char* p) {
+        for (size_t c = 0; c < nc; ++c)
+          out.values[i * nc + c] = gltf_component_value(p + c * size_t(cs), acc.componentType, acc.normalized);
+      });
   return out;
 }
 
@@ -270,8 +270,9 @@ std::vector<uint32_t> GltfAccessors::read_indices(int a, const std::string& wher
     fail(aw + ": accessor is " + gltf_type_name(acc.type) + " of " + component_name(acc.componentType) +
          ", expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
   std::vector<uint32_t> out;
-  read_elements(acc, aw, 1, [&](size_t count) { out.assign(count, 0u); },
-                [&](size_t i, const unsigned char* p) { out[i] = read_index(p, acc.componentType); });
+  read_elements(
+      acc, aw, 1, [&](size_t count) { out.assign(count, 0u); },
+      [&](size_t i, const unsigned char* p) { out[i] = read_index(p, acc.componentType); });
   return out;
 }
 
@@ -284,8 +285,7 @@ void GltfAccessors::read_elements(const tinygltf::Accessor& acc, const std::stri
   const size_t elem = size_t(cs) * size_t(nc);
   // Without a bufferView the elements are zeros (sparse may then set some);
   // bound the count so a lying file cannot make us allocate without limit.
-  if (acc.count > max_accessor_elements)
-    fail(aw + ": count " + std::to_string(acc.count) + " is implausibly large");
+  if (acc.count > max_accessor_elements) fail(aw + ": count " + std::to_string(acc.count) + " is implausibly large");
   if (acc.bufferView == -1) {
     alloc(acc.count);
   } else {

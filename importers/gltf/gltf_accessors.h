@@ -30,22 +30,21 @@ enum AccessorFormat : uint32_t {
   format_snorm16 = 1u << 4,  // SHORT, normalized: max(c / 32767, -1)
   format_uint8 = 1u << 5,    // UNSIGNED_BYTE as its integer value
   format_uint16 = 1u << 6,
-  format_int8 = 1u << 7,     // BYTE as its integer value
+  format_int8 = 1u << 7,  // BYTE as its integer value
   format_int16 = 1u << 8,
 };
 // What each attribute semantic accepts: the core specification's formats plus
 // KHR_mesh_quantization's (accepted whether or not the file declares it; the
 // values are what they are, and positions are scaled by the node transform).
 inline constexpr uint32_t formats_position = format_float | format_unorm8 | format_unorm16 | format_snorm8 |
-                                             format_snorm16 | format_uint8 | format_uint16 | format_int8 |
-                                             format_int16;
+                                             format_snorm16 | format_uint8 | format_uint16 | format_int8 | format_int16;
 inline constexpr uint32_t formats_normal = format_float | format_snorm8 | format_snorm16;
 inline constexpr uint32_t formats_texcoord = formats_position;
 inline constexpr uint32_t formats_color = format_float | format_unorm8 | format_unorm16;
 inline constexpr uint32_t formats_weights = format_float | format_unorm8 | format_unorm16;
 inline constexpr uint32_t formats_joints = format_uint8 | format_uint16;
-inline constexpr uint32_t formats_morph_delta = format_float | format_snorm8 | format_snorm16 | format_int8 |
-                                                format_int16;
+inline constexpr uint32_t formats_morph_delta =
+    format_float | format_snorm8 | format_snorm16 | format_int8 | format_int16;
 // EXT_mesh_gpu_instancing: ROTATION may be normalized (as gltfpack writes it).
 inline constexpr uint32_t formats_rotation = format_float | format_snorm8 | format_snorm16;
 

@@ -18,20 +18,20 @@ namespace {
 
 // ---- EXT_meshopt_compression bitstream facts (the extension's Appendix A) ------
 
-constexpr size_t meshopt_header_bytes = 1;              // 0xa0 / 0xe1 / 0xd1, every mode
+constexpr size_t meshopt_header_bytes = 1;               // 0xa0 / 0xe1 / 0xd1, every mode
 constexpr size_t meshopt_max_attribute_stride = 256;     // bytes; ATTRIBUTES' byteStride limit
 constexpr size_t meshopt_attribute_stride_align = 4;     // bytes; ATTRIBUTES' byteStride multiple
-constexpr size_t meshopt_elements_per_header_byte = 64;   // 16-element groups, 2 header bits each
-constexpr size_t meshopt_attribute_tail_min_bytes = 32;   // baseline element, padded to 32 bytes
+constexpr size_t meshopt_elements_per_header_byte = 64;  // 16-element groups, 2 header bits each
+constexpr size_t meshopt_attribute_tail_min_bytes = 32;  // baseline element, padded to 32 bytes
 constexpr size_t meshopt_triangles_tail_bytes = 16;      // the codeaux lookup table
 constexpr size_t meshopt_indices_tail_bytes = 4;         // reserved zero bytes
 constexpr size_t triangles_indices_per_code = 3;         // one code byte per triangle
-constexpr size_t index_stride16 = 2;                   // bytes: TRIANGLES / INDICES as 16-bit indices
-constexpr size_t index_stride32 = 4;                   // bytes: ... as 32-bit indices
-constexpr size_t octahedral_stride8 = 4;               // bytes: four 8-bit components
-constexpr size_t octahedral_stride16 = 8;              // bytes: four 16-bit components
-constexpr size_t quaternion_stride = 8;                // bytes: four 16-bit components
-constexpr size_t exponential_stride_align = 4;          // bytes: 32-bit values
+constexpr size_t index_stride16 = 2;                     // bytes: TRIANGLES / INDICES as 16-bit indices
+constexpr size_t index_stride32 = 4;                     // bytes: ... as 32-bit indices
+constexpr size_t octahedral_stride8 = 4;                 // bytes: four 8-bit components
+constexpr size_t octahedral_stride16 = 8;                // bytes: four 16-bit components
+constexpr size_t quaternion_stride = 8;                  // bytes: four 16-bit components
+constexpr size_t exponential_stride_align = 4;           // bytes: 32-bit values
 
 const char* mode_name(MeshoptMode m) {
   switch (m) {
@@ -65,7 +65,8 @@ void check_meshopt_layout(size_t count, size_t stride, MeshoptMode mode, Meshopt
     if (stride == 0 || stride % meshopt_attribute_stride_align != 0 || stride > meshopt_max_attribute_stride)
       fail(where, "mode ATTRIBUTES needs a byteStride that is a multiple of 4, from 4 to 256" + found);
   } else {
-    if (stride != index_stride16 && stride != index_stride32) fail(where, std::string("mode ") + mode_name(mode) + " needs byteStride 2 or 4" + found);
+    if (stride != index_stride16 && stride != index_stride32)
+      fail(where, std::string("mode ") + mode_name(mode) + " needs byteStride 2 or 4" + found);
     if (filter != MeshoptFilter::none)
       fail(where, std::string("filter ") + filter_name(filter) + " is only allowed with mode ATTRIBUTES, not " +
                       mode_name(mode));
@@ -82,7 +83,8 @@ void check_meshopt_layout(size_t count, size_t stride, MeshoptMode mode, Meshopt
       if (stride != quaternion_stride) fail(where, "filter QUATERNION needs byteStride 8" + found);
       break;
     case MeshoptFilter::exponential:
-      if (stride % exponential_stride_align != 0) fail(where, "filter EXPONENTIAL needs a byteStride that is a multiple of 4" + found);
+      if (stride % exponential_stride_align != 0)
+        fail(where, "filter EXPONENTIAL needs a byteStride that is a multiple of 4" + found);
       break;
   }
 }
@@ -96,7 +98,8 @@ size_t meshopt_min_stream_bytes(size_t count, size_t stride, MeshoptMode mode) {
     case MeshoptMode::attributes:
       // Each attribute block holds, per byte of the element, 2 header bits per
       // group of 16 elements, rounded up to whole bytes.
-      return meshopt_header_bytes + stride * ((count + meshopt_elements_per_header_byte - 1) / meshopt_elements_per_header_byte) +
+      return meshopt_header_bytes +
+             stride * ((count + meshopt_elements_per_header_byte - 1) / meshopt_elements_per_header_byte) +
              std::max(stride, meshopt_attribute_tail_min_bytes);
     case MeshoptMode::triangles:
       return meshopt_header_bytes + count / triangles_indices_per_code + meshopt_triangles_tail_bytes;
@@ -236,8 +239,8 @@ DracoMesh decode_draco(const uint8_t* data, size_t size, const std::vector<int>&
     for (size_t i = 0; i < out.vertex_count; ++i) {
       const draco::AttributeValueIndex v = att->mapped_index(draco::PointIndex(uint32_t(i)));
       if (v.value() >= att->size())
-        fail(where, what + ": vertex " + std::to_string(i) + " refers to value " + std::to_string(v.value()) +
-                        " of " + std::to_string(att->size()));
+        fail(where, what + ": vertex " + std::to_string(i) + " refers to value " + std::to_string(v.value()) + " of " +
+                        std::to_string(att->size()));
       if (!att->ConvertValue<float>(v, int8_t(components), a.values.data() + i * size_t(components)))
         fail(where, what + ": value " + std::to_string(v.value()) + " cannot be converted to floats");
     }

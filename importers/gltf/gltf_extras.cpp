@@ -58,7 +58,9 @@ bool same_direction(vec3 a, vec3 b) {
   return glm::length(glm::cross(glm::normalize(a), glm::normalize(b))) <= 1e-4f && glm::dot(a, b) > 0.f;
 }
 
-bool same_point(vec3 a, vec3 b) { return glm::length(a - b) <= 1e-4f * std::max({1.f, glm::length(a), glm::length(b)}); }
+bool same_point(vec3 a, vec3 b) {
+  return glm::length(a - b) <= 1e-4f * std::max({1.f, glm::length(a), glm::length(b)});
+}
 
 }  // namespace
 
@@ -79,8 +81,8 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     int t = scene_texture(int(ti));
     if (t == invalid || size_t(t) >= scene.textures.size()) continue;
     std::string lookup;
-    if (get_string(*ex, "lookup", &lookup)) scene.textures[size_t(t)].lookup =
-        lookup == "course" ? Texture::Lookup::course : Texture::Lookup::standard;
+    if (get_string(*ex, "lookup", &lookup))
+      scene.textures[size_t(t)].lookup = lookup == "course" ? Texture::Lookup::course : Texture::Lookup::standard;
     bool srgb = true;
     if (get_bool(*ex, "srgb", &srgb)) scene.textures[size_t(t)].srgb = srgb;
   }
@@ -131,7 +133,8 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
              std::abs(double(roughness) - gm.pbrMetallicRoughness.roughnessFactor) <= 1e-6;
     }
     if (!same) {
-      warn(where + ": its metallic-roughness values are not those rayform wrote (edited?), so its Phong extras are stale");
+      warn(where +
+           ": its metallic-roughness values are not those rayform wrote (edited?), so its Phong extras are stale");
       continue;
     }
     Material& m = scene.materials[size_t(mi)];
@@ -193,7 +196,8 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     for (Camera& c : scene.cameras) {
       if (c.name != name) continue;
       std::string aspect, up_vector, original;
-      if (get_string(*ex, "aspect", &aspect)) c.aspect = aspect == "stretch" ? Camera::Aspect::stretch : Camera::Aspect::fit;
+      if (get_string(*ex, "aspect", &aspect))
+        c.aspect = aspect == "stretch" ? Camera::Aspect::stretch : Camera::Aspect::fit;
       vec3 center, direction, up;
       float fov = c.fov_deg, height = c.ortho_height;
       bool ok = get_vec3(*ex, "center", &center) && get_vec3(*ex, "direction", &direction) && get_vec3(*ex, "up", &up);
@@ -222,7 +226,8 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     const tinygltf::Light& gl = model.lights[li];
     const Value* ex = rayform_of(gl.extras);
     if (!ex) continue;
-    const std::string name = gl.name.empty() ? "extensions.KHR_lights_punctual.lights[" + std::to_string(li) + "]" : gl.name;
+    const std::string name =
+        gl.name.empty() ? "extensions.KHR_lights_punctual.lights[" + std::to_string(li) + "]" : gl.name;
     for (Light& l : scene.lights) {
       if (l.name != name) continue;
       vec3 color, position, direction;
@@ -233,9 +238,11 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
            (l.kind == Light::Kind::point || same_direction(direction, l.direction));
       // The colour must still be what the light's colour and intensity say,
       // up to the intensity scaling the writer chose.
-      ok = ok && (l.kind != Light::Kind::directional || glm::length(color - l.color) <= 1e-4f * std::max(1.f, glm::length(color)));
+      ok = ok && (l.kind != Light::Kind::directional ||
+                  glm::length(color - l.color) <= 1e-4f * std::max(1.f, glm::length(color)));
       if (!ok) {
-        warn("KHR_lights_punctual.lights[" + std::to_string(li) + "]: its node or colour no longer match its extras (edited?)");
+        warn("KHR_lights_punctual.lights[" + std::to_string(li) +
+             "]: its node or colour no longer match its extras (edited?)");
         continue;
       }
       l.color = color;

@@ -21,8 +21,8 @@ namespace rayform {
 // The user data of gltf_load_image.
 struct GltfImageContext {
   const tinygltf::Model* model = nullptr;  // to check bufferView ranges, which tinygltf does not
-  std::vector<std::string> warnings;      // "images[2]: cannot decode (...)"
-  std::vector<int> ktx2_images;           // images left empty because they are KTX2
+  std::vector<std::string> warnings;       // "images[2]: cannot decode (...)"
+  std::vector<int> ktx2_images;            // images left empty because they are KTX2
 };
 
 // tinygltf::LoadImageDataFunction.

@@ -35,8 +35,7 @@ class ExtensionReader {
     if (!v_.Has(key)) return fallback;
     const tinygltf::Value& n = v_.Get(key);
     const double d = n.IsNumber() ? n.GetNumberAsDouble() : std::nan("");
-    if (!(d >= lo && d <= hi))
-      fail(key, "expected a number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    if (!(d >= lo && d <= hi)) fail(key, "expected a number from " + std::to_string(lo) + " to " + std::to_string(hi));
     return float(d);
   }
   // `count` finite numbers >= 0, `fallback` when absent.
@@ -176,7 +175,7 @@ void gltf_material_to_phong(const tinygltf::Material& gm, const std::string& fil
     m.unlit = true;
     record(extensions, "KHR_materials_unlit", Support::read, "");
   }
-  static const char* const ignored[] = {"KHR_materials_sheen",      "KHR_materials_volume",
+  static const char* const ignored[] = {"KHR_materials_sheen",       "KHR_materials_volume",
                                         "KHR_materials_iridescence", "KHR_materials_anisotropy",
                                         "KHR_materials_dispersion",  "KHR_materials_diffuse_transmission"};
   for (const char* name : ignored)

@@ -190,15 +190,28 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
 // in extensionsRequired is an error; any other in extensionsUsed is ignored
 // and said so.
 const std::set<std::string>& supported_extensions() {
-  static const std::set<std::string> s = {
-      "KHR_texture_transform",          "KHR_lights_punctual",           "KHR_materials_emissive_strength",
-      "KHR_draco_mesh_compression",     "EXT_meshopt_compression",       "KHR_mesh_quantization",
-      "EXT_texture_webp",               "KHR_texture_basisu",            "EXT_mesh_gpu_instancing",
-      "KHR_materials_ior",              "KHR_materials_specular",        "KHR_materials_unlit",
-      "KHR_materials_transmission",     "KHR_materials_clearcoat",       "KHR_materials_pbrSpecularGlossiness",
-      "KHR_materials_sheen",            "KHR_materials_volume",          "KHR_materials_iridescence",
-      "KHR_materials_anisotropy",       "KHR_materials_dispersion",      "KHR_materials_variants",
-      "KHR_materials_diffuse_transmission"};
+  static const std::set<std::string> s = {"KHR_texture_transform",
+                                          "KHR_lights_punctual",
+                                          "KHR_materials_emissive_strength",
+                                          "KHR_draco_mesh_compression",
+                                          "EXT_meshopt_compression",
+                                          "KHR_mesh_quantization",
+                                          "EXT_texture_webp",
+                                          "KHR_texture_basisu",
+                                          "EXT_mesh_gpu_instancing",
+                                          "KHR_materials_ior",
+                                          "KHR_materials_specular",
+                                          "KHR_materials_unlit",
+                                          "KHR_materials_transmission",
+                                          "KHR_materials_clearcoat",
+                                          "KHR_materials_pbrSpecularGlossiness",
+                                          "KHR_materials_sheen",
+                                          "KHR_materials_volume",
+                                          "KHR_materials_iridescence",
+                                          "KHR_materials_anisotropy",
+                                          "KHR_materials_dispersion",
+                                          "KHR_materials_variants",
+                                          "KHR_materials_diffuse_transmission"};
   return s;
 }
 
@@ -291,10 +304,10 @@ class GltfSceneBuilder {
     loader.SetFsCallbacks(callbacks);
     loader.SetImageLoader(&gltf_load_image, &images);
     std::string err, warn_text;
-    bool ok = glb ? loader.LoadBinaryFromMemory(&model_, &err, &warn_text, bytes.data(), unsigned(bytes.size()),
-                                                fsctx.base)
-                  : loader.LoadASCIIFromString(&model_, &err, &warn_text, reinterpret_cast<const char*>(bytes.data()),
-                                               unsigned(bytes.size()), fsctx.base);
+    bool ok =
+        glb ? loader.LoadBinaryFromMemory(&model_, &err, &warn_text, bytes.data(), unsigned(bytes.size()), fsctx.base)
+            : loader.LoadASCIIFromString(&model_, &err, &warn_text, reinterpret_cast<const char*>(bytes.data()),
+                                         unsigned(bytes.size()), fsctx.base);
     if (!ok) diagnose_load_failure(bytes, glb, err);
     for (const std::string& w : images.warnings) warn(w);
     ktx2_images_.insert(images.ktx2_images.begin(), images.ktx2_images.end());
@@ -328,7 +341,8 @@ class GltfSceneBuilder {
         if (glb) {
           uint32_t len = 0;
           if (bytes.size() >= 20) std::memcpy(&len, bytes.data() + 12, 4);
-          if (bytes.size() >= 20 && len <= bytes.size() - 20) json_text.assign(bytes.begin() + 20, bytes.begin() + 20 + len);
+          if (bytes.size() >= 20 && len <= bytes.size() - 20)
+            json_text.assign(bytes.begin() + 20, bytes.begin() + 20 + len);
         } else {
           json_text.assign(bytes.begin(), bytes.end());
         }
@@ -348,8 +362,8 @@ class GltfSceneBuilder {
             uintmax_t size = fs::file_size(file, ec);
             if (b.contains("byteLength") && b["byteLength"].is_number_unsigned() &&
                 b["byteLength"].get<uintmax_t>() != size)
-              fail(idx("buffers", long(i)) + ": '" + uri + "' has " + std::to_string(size) + " bytes but byteLength is " +
-                   std::to_string(b["byteLength"].get<uintmax_t>()));
+              fail(idx("buffers", long(i)) + ": '" + uri + "' has " + std::to_string(size) +
+                   " bytes but byteLength is " + std::to_string(b["byteLength"].get<uintmax_t>()));
           }
         }
       } catch (const nlohmann::json::exception&) {
@@ -384,7 +398,8 @@ class GltfSceneBuilder {
   void report_extensions() {
     using Support = ExtensionUse::Support;
     for (const std::string& ext : model_.extensionsUsed) {
-      bool seen = std::any_of(extensions_.begin(), extensions_.end(), [&](const ExtensionUse& u) { return u.name == ext; });
+      bool seen =
+          std::any_of(extensions_.begin(), extensions_.end(), [&](const ExtensionUse& u) { return u.name == ext; });
       if (seen) continue;
       if (supported_extensions().count(ext)) extensions_.push_back({ext, Support::read, ""});
       else extensions_.push_back({ext, Support::ignored, "not supported"});
@@ -414,7 +429,9 @@ class GltfSceneBuilder {
       fail("scene " + std::to_string(options_.scene) + " was asked for but the file has " +
            std::to_string(model_.scenes.size()) + " scenes");
     if (s < 0 && !model_.scenes.empty()) s = 0;
-    if (s >= int(model_.scenes.size())) fail("scene: scene " + std::to_string(s) + " does not exist (the file has " + std::to_string(model_.scenes.size()) + " scenes)");
+    if (s >= int(model_.scenes.size()))
+      fail("scene: scene " + std::to_string(s) + " does not exist (the file has " +
+           std::to_string(model_.scenes.size()) + " scenes)");
     if (s >= 0) {
       const tinygltf::Scene& sc = model_.scenes[size_t(s)];
       for (size_t k = 0; k < sc.nodes.size(); ++k)
@@ -456,7 +473,8 @@ class GltfSceneBuilder {
     mat4 m(1.f);
     if (!n.translation.empty()) m = glm::translate(m, vec3(n.translation[0], n.translation[1], n.translation[2]));
     if (!n.rotation.empty()) {
-      glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));  // w, x, y, z
+      glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                  float(n.rotation[2]));  // w, x, y, z
       float len = glm::length(q);
       if (!(len > 0.f)) fail(where + ".rotation: the quaternion is zero");
       m = m * glm::mat4_cast(q / len);
@@ -475,13 +493,13 @@ class GltfSceneBuilder {
   // primitives become shape nodes one level deeper, within max_node_depth.
   int convert_node(int i, const std::string& ref, const mat4& parent_world, int depth = 2) {
     if (depth + 1 > max_node_depth)
-      fail(ref + ": the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) + " levels)");
+      fail(ref + ": the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) +
+           " levels)");
     if (i < 0 || size_t(i) >= model_.nodes.size())
-      fail(ref + ": node " + std::to_string(i) + " does not exist (the file has " + std::to_string(model_.nodes.size()) +
-           " nodes)");
+      fail(ref + ": node " + std::to_string(i) + " does not exist (the file has " +
+           std::to_string(model_.nodes.size()) + " nodes)");
     const std::string where = idx("nodes", i);
-    if (on_path_[size_t(i)])
-      fail(ref + ": " + where + " is its own ancestor (recursive node graph)");
+    if (on_path_[size_t(i)]) fail(ref + ": " + where + " is its own ancestor (recursive node graph)");
     if (nodes_[size_t(i)] != invalid) return nodes_[size_t(i)];  // a second parent: share the subtree
     on_path_[size_t(i)] = 1;
     const tinygltf::Node& n = model_.nodes[size_t(i)];
@@ -499,7 +517,8 @@ class GltfSceneBuilder {
       // Morph weights: the node's, else the mesh's, else 0.
       std::vector<float> weights;
       for (double w : n.weights.empty() ? gm.weights : n.weights) {
-        if (!std::isfinite(w)) fail(where + (n.weights.empty() ? idx(".meshes", n.mesh) : std::string()) + ".weights: not finite");
+        if (!std::isfinite(w))
+          fail(where + (n.weights.empty() ? idx(".meshes", n.mesh) : std::string()) + ".weights: not finite");
         weights.push_back(float(w));
       }
       if (std::all_of(weights.begin(), weights.end(), [](float w) { return w == 0.f; })) weights.clear();
@@ -574,8 +593,9 @@ class GltfSceneBuilder {
     std::vector<mat4> out(count, mat4(1.f));
     for (size_t i = 0; i < count; ++i) {
       mat4& m = out[i];
-      if (attrs[0].present) m = glm::translate(m, vec3(attrs[0].values.values[3 * i], attrs[0].values.values[3 * i + 1],
-                                                       attrs[0].values.values[3 * i + 2]));
+      if (attrs[0].present)
+        m = glm::translate(m, vec3(attrs[0].values.values[3 * i], attrs[0].values.values[3 * i + 1],
+                                   attrs[0].values.values[3 * i + 2]));
       if (attrs[1].present) {
         const float* q = &attrs[1].values.values[4 * i];
         glm::quat r(q[3], q[0], q[1], q[2]);  // w, x, y, z
@@ -583,8 +603,9 @@ class GltfSceneBuilder {
         if (!(len > 0.f)) fail(ew + ".attributes.ROTATION: instance " + std::to_string(i) + "'s quaternion is zero");
         m = m * glm::mat4_cast(r / len);
       }
-      if (attrs[2].present) m = glm::scale(m, vec3(attrs[2].values.values[3 * i], attrs[2].values.values[3 * i + 1],
-                                                   attrs[2].values.values[3 * i + 2]));
+      if (attrs[2].present)
+        m = glm::scale(m, vec3(attrs[2].values.values[3 * i], attrs[2].values.values[3 * i + 1],
+                               attrs[2].values.values[3 * i + 2]));
     }
     return out;
   }
@@ -613,7 +634,8 @@ class GltfSceneBuilder {
     cam.up = glm::normalize(up);
     if (gc.type == "perspective") {
       double yfov = gc.perspective.yfov;
-      if (!(yfov > 0.0 && yfov < std::numbers::pi)) fail(cw + ".perspective.yfov: " + std::to_string(yfov) + " is not in (0, pi)");
+      if (!(yfov > 0.0 && yfov < std::numbers::pi))
+        fail(cw + ".perspective.yfov: " + std::to_string(yfov) + " is not in (0, pi)");
       cam.projection = Camera::Projection::perspective;
       cam.fov_deg = float(yfov * 180.0 / std::numbers::pi);
     } else if (gc.type == "orthographic") {
@@ -935,7 +957,8 @@ class GltfSceneBuilder {
     const tinygltf::Value& attributes = e.Get("attributes");
     for (const std::string& name : attributes.Keys()) {
       const tinygltf::Value& id = attributes.Get(name);
-      if (!id.IsNumber() || id.GetNumberAsInt() < 0) fail(dw + ".attributes." + name + ": expected a Draco attribute id");
+      if (!id.IsNumber() || id.GetNumberAsInt() < 0)
+        fail(dw + ".attributes." + name + ": expected a Draco attribute id");
       if (!prim.attributes.count(name))
         fail(dw + ".attributes." + name + ": the primitive has no accessor for this attribute");
       out->slots[name] = int(ids.size());
@@ -1040,7 +1063,8 @@ class GltfSceneBuilder {
       const std::string where = idx("meshes", mi) + "." + idx("primitives", long(j));
       std::string name = gm.name.empty() ? idx("meshes", mi) : gm.name;
       if (gm.primitives.size() > 1) name += "#" + std::to_string(j);
-      Primitive p = convert_primitive(gm.primitives[j], where, name, weights, skinned_node != invalid ? &joints : nullptr);
+      Primitive p =
+          convert_primitive(gm.primitives[j], where, name, weights, skinned_node != invalid ? &joints : nullptr);
       if (p.mesh == invalid) continue;
       meshes.push_back(p.mesh);
       Node shape;
@@ -1068,7 +1092,8 @@ class GltfSceneBuilder {
       case TINYGLTF_MODE_LINE:
       case TINYGLTF_MODE_LINE_LOOP:
       case TINYGLTF_MODE_LINE_STRIP:
-        warn(where + ": " + (mode == TINYGLTF_MODE_POINTS ? "points are" : "lines are") + " not rendered; primitive skipped");
+        warn(where + ": " + (mode == TINYGLTF_MODE_POINTS ? "points are" : "lines are") +
+             " not rendered; primitive skipped");
         return {};
       default: fail(where + ".mode: " + std::to_string(mode) + " is not a primitive mode (0 to 6)");
     }
@@ -1085,7 +1110,8 @@ class GltfSceneBuilder {
         attribute(prim, draco.get(), "POSITION", where, {TINYGLTF_TYPE_VEC3}, formats_position);
     const size_t nv = positions.count;
     mesh.positions.resize(nv);
-    for (size_t i = 0; i < nv; ++i) mesh.positions[i] = vec3(positions.values[3 * i], positions.values[3 * i + 1], positions.values[3 * i + 2]);
+    for (size_t i = 0; i < nv; ++i)
+      mesh.positions[i] = vec3(positions.values[3 * i], positions.values[3 * i + 1], positions.values[3 * i + 2]);
     auto same_count = [&](size_t n, const std::string& aw) {
       if (n != nv) fail(aw + ": " + std::to_string(n) + " elements, but POSITION has " + std::to_string(nv));
     };
@@ -1119,13 +1145,14 @@ class GltfSceneBuilder {
       GltfAccessors::Floats f = attribute(prim, draco.get(), uv_name, where, {TINYGLTF_TYPE_VEC2}, formats_texcoord);
       same_count(f.count, where + ".attributes." + uv_name);
       mesh.uvs.resize(nv);
-      for (size_t i = 0; i < nv; ++i) mesh.uvs[i] = vec2(f.values[2 * i], 1.f - f.values[2 * i + 1]);  // v = 1 at the top
+      for (size_t i = 0; i < nv; ++i)
+        mesh.uvs[i] = vec2(f.values[2 * i], 1.f - f.values[2 * i + 1]);  // v = 1 at the top
     } else if (scene_.materials[size_t(mat)].diffuse_texture != invalid) {
       warn(where + ": the material's texture uses " + uv_name + " but the primitive has none; drawn untextured");
     }
     if (prim.attributes.count("COLOR_0")) {
-      GltfAccessors::Floats f = attribute(prim, draco.get(), "COLOR_0", where,
-                                          {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, formats_color);
+      GltfAccessors::Floats f =
+          attribute(prim, draco.get(), "COLOR_0", where, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, formats_color);
       same_count(f.count, where + ".attributes.COLOR_0");
       read_vec3s(f, mesh.colors);  // linear already; alpha is not used
     }
@@ -1136,9 +1163,8 @@ class GltfSceneBuilder {
       order = draco->mesh.indices;
       const int indices = prim.indices != -1 ? prim.indices : draco->indices;
       if (indices != -1 && accessors_.accessor(indices, iw).count != order.size())
-        fail(iw + " (" + idx("accessors", indices) + "): the Draco stream decodes to " +
-             std::to_string(order.size()) + " indices but the accessor's count is " +
-             std::to_string(accessors_.accessor(indices, iw).count));
+        fail(iw + " (" + idx("accessors", indices) + "): the Draco stream decodes to " + std::to_string(order.size()) +
+             " indices but the accessor's count is " + std::to_string(accessors_.accessor(indices, iw).count));
     } else if (prim.indices != -1) {
       order = accessors_.read_indices(prim.indices, iw);
     } else {
@@ -1174,8 +1200,10 @@ class GltfSceneBuilder {
         if (values.empty()) continue;  // a NORMAL delta without normals
         const std::string aw = tw + "." + name;
         GltfAccessors::Floats d = accessors_.read_floats(it->second, aw, {TINYGLTF_TYPE_VEC3}, formats_morph_delta);
-        if (d.count != nv) fail(aw + ": " + std::to_string(d.count) + " elements, but POSITION has " + std::to_string(nv));
-        for (size_t i = 0; i < nv; ++i) values[i] += w * vec3(d.values[3 * i], d.values[3 * i + 1], d.values[3 * i + 2]);
+        if (d.count != nv)
+          fail(aw + ": " + std::to_string(d.count) + " elements, but POSITION has " + std::to_string(nv));
+        for (size_t i = 0; i < nv; ++i)
+          values[i] += w * vec3(d.values[3 * i], d.values[3 * i + 1], d.values[3 * i + 2]);
       }
     }
   }
@@ -1233,8 +1261,7 @@ class GltfSceneBuilder {
       out.reserve(n - n % 3);
       for (size_t i = 0; i + 2 < n; i += 3) push(v[i], v[i + 1], v[i + 2], false);
     } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-      for (size_t i = 0; i + 2 < n; ++i)
-        push(v[i], v[i + 1 + i % 2], v[i + 2 - i % 2], true);
+      for (size_t i = 0; i + 2 < n; ++i) push(v[i], v[i + 1 + i % 2], v[i + 2 - i % 2], true);
     } else {
       for (size_t i = 0; i + 2 < n; ++i) push(v[i + 1], v[i + 2], v[0], true);
     }
@@ -1261,7 +1288,7 @@ class GltfSceneBuilder {
   std::vector<std::string>* warnings_;
   std::set<std::string> seen_warnings_;
   tinygltf::Model model_;
-  GltfAccessors accessors_;                     // reads model_'s accessors
+  GltfAccessors accessors_;  // reads model_'s accessors
   Scene scene_;
   // Shape nodes per (glTF mesh, skinned node or invalid, morph weights).
   using MeshKey = std::tuple<int, int, std::vector<float>>;
@@ -1271,10 +1298,10 @@ class GltfSceneBuilder {
   std::vector<int> parents_;                         // per glTF node: its first parent (node_world)
   std::set<int> ktx2_images_;                        // images that are KTX2 (not decoded)
   std::vector<ExtensionUse> extensions_;
-  std::vector<int> materials_;                  // per glTF material: Scene material
-  std::vector<int> material_texcoord_;          // per Scene material: TEXCOORD set of its texture
-  std::vector<int> textures_;                   // per glTF texture: Scene texture; -2 not yet converted
-  std::vector<int> nodes_;                      // per glTF node: Scene node
+  std::vector<int> materials_;          // per glTF material: Scene material
+  std::vector<int> material_texcoord_;  // per Scene material: TEXCOORD set of its texture
+  std::vector<int> textures_;           // per glTF texture: Scene texture; -2 not yet converted
+  std::vector<int> nodes_;              // per glTF node: Scene node
   std::vector<uint8_t> on_path_;
   std::set<std::string> unused_textures_;
   int default_material_ = invalid;

@@ -115,9 +115,9 @@ void split_trs(const mat4& m, mat4* a, mat4* b) {
   // Re-orthonormalise U (Gram-Schmidt; a zero column is rebuilt by a cross product).
   u[0] = glm::length(u[0]) > 0 ? glm::normalize(u[0]) : glm::dvec3(1, 0, 0);
   u[1] = u[1] - glm::dot(u[1], u[0]) * u[0];
-  u[1] = glm::length(u[1]) > 1e-12 ? glm::normalize(u[1])
-                                   : glm::normalize(glm::cross(u[0], std::abs(u[0].x) < 0.9 ? glm::dvec3(1, 0, 0)
-                                                                                             : glm::dvec3(0, 1, 0)));
+  u[1] = glm::length(u[1]) > 1e-12
+             ? glm::normalize(u[1])
+             : glm::normalize(glm::cross(u[0], std::abs(u[0].x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
   glm::dvec3 c = glm::cross(u[0], u[1]);
   if (glm::dot(c, u[2]) < 0) s[2] = -s[2];  // a mirror: into the scale
   u[2] = c;
@@ -305,7 +305,10 @@ class GltfBuilder {
     }
     // Equal data (e.g. one mesh read back as a copy per material) is stored once.
     std::string key;
-    auto append = [&key](const void* d, size_t n) { key.append(static_cast<const char*>(d), n); key += '|'; };
+    auto append = [&key](const void* d, size_t n) {
+      key.append(static_cast<const char*>(d), n);
+      key += '|';
+    };
     append(pos.data(), pos.size() * sizeof(vec3));
     append(nor.data(), nor.size() * sizeof(vec3));
     append(uv.data(), uv.size() * sizeof(vec2));
@@ -341,7 +344,8 @@ class GltfBuilder {
     if (g.normal >= 0) p.attributes["NORMAL"] = g.normal;
     if (g.uv >= 0) p.attributes["TEXCOORD_0"] = g.uv;
     if (g.color >= 0) p.attributes["COLOR_0"] = g.color;
-    if (g.uv < 0 && material >= 0 && model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.index >= 0)
+    if (g.uv < 0 && material >= 0 &&
+        model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.index >= 0)
       material = untextured(material);
     p.material = material;
     return p;
@@ -363,8 +367,8 @@ class GltfBuilder {
                    .first;
         tinygltf::Primitive p = primitive(it->second, gltf_material(r.material));
         if (options_.shape_extras)
-          p.extras = rayform_extras({{"sphere", Value(Value::Object{{"center", vec_value(s.center)},
-                                                                    {"radius", num(s.radius)}})}});
+          p.extras = rayform_extras(
+              {{"sphere", Value(Value::Object{{"center", vec_value(s.center)}, {"radius", num(s.radius)}})}});
         out.push_back(std::move(p));
         ++spheres_;
         break;
@@ -384,8 +388,8 @@ class GltfBuilder {
         Geometry g = mesh_geometry(plane_quad(pl, around, half), invalid);
         tinygltf::Primitive p = primitive(g, gltf_material(r.material));
         if (options_.shape_extras)
-          p.extras = rayform_extras({{"plane", Value(Value::Object{{"normal", vec_value(pl.normal)},
-                                                                   {"offset", num(pl.offset)}})}});
+          p.extras = rayform_extras(
+              {{"plane", Value(Value::Object{{"normal", vec_value(pl.normal)}, {"offset", num(pl.offset)}})}});
         out.push_back(std::move(p));
         ++planes_;
         break;
@@ -428,7 +432,8 @@ class GltfBuilder {
   // One glTF mesh for a list of shapes, reused when the same list recurs
   // (planes are placed by their world matrix, so they are never shared).
   int add_mesh(const std::vector<PrimitiveRef>& refs, const std::string& name) {
-    bool shareable = std::none_of(refs.begin(), refs.end(), [](const PrimitiveRef& r) { return r.kind == ShapeKind::plane; });
+    bool shareable =
+        std::none_of(refs.begin(), refs.end(), [](const PrimitiveRef& r) { return r.kind == ShapeKind::plane; });
     if (shareable) {
       auto it = meshes_.find(refs);
       if (it != meshes_.end()) return it->second;
@@ -543,7 +548,8 @@ class GltfBuilder {
     tinygltf::Sampler s;
     s.wrapS = wrap(t.wrap_u);
     s.wrapT = wrap(t.wrap_v);
-    s.magFilter = t.filter == Texture::Filter::nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.magFilter =
+        t.filter == Texture::Filter::nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
     s.minFilter = t.filter == Texture::Filter::nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST
                                                        : TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
     auto key = std::make_tuple(s.wrapS, s.wrapT, s.magFilter);
@@ -566,7 +572,8 @@ class GltfBuilder {
     try {
       bytes = texture_file(t, {"png", "jpg"}, &ext);
     } catch (const Error& e) {
-      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() + "); materials using it are untextured");
+      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+           "); materials using it are untextured");
       textures_[ti] = -1;
       return -1;
     }
@@ -583,7 +590,8 @@ class GltfBuilder {
       // tinygltf writes "target" only for the two buffer targets: none here.
     } else {
       std::string file = safe_file_name(stem_ + "_" + base) + "." + ext;
-      for (int k = 2; used_files_.count(file); ++k) file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
+      for (int k = 2; used_files_.count(file); ++k)
+        file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
       used_files_.insert(file);
       img.uri = file;
       out_.add(out_.beside(file), std::move(bytes));
@@ -639,8 +647,7 @@ class GltfBuilder {
       vec3 e = m.emission;
       if (peak > 1.f) {
         e /= peak;
-        gm.extensions["KHR_materials_emissive_strength"] =
-            Value(Value::Object{{"emissiveStrength", num(peak)}});
+        gm.extensions["KHR_materials_emissive_strength"] = Value(Value::Object{{"emissiveStrength", num(peak)}});
         use_extension("KHR_materials_emissive_strength");
       }
       e = glm::clamp(e, vec3(0.f), vec3(1.f));
@@ -657,9 +664,8 @@ class GltfBuilder {
     }
 
     Value::Object ex;
-    ex["phong"] = Value(Value::Object{{"diffuse", vec_value(m.diffuse)},
-                                      {"specular", vec_value(m.specular)},
-                                      {"shininess", num(m.shininess)}});
+    ex["phong"] = Value(Value::Object{
+        {"diffuse", vec_value(m.diffuse)}, {"specular", vec_value(m.specular)}, {"shininess", num(m.shininess)}});
     ex["texture_modulates"] = Value(m.texture_modulates);
     ex["two_sided_lighting"] = Value(m.two_sided_lighting);
     if (m.refraction_index != 0.f) ex["refraction_index"] = num(m.refraction_index);
@@ -672,13 +678,12 @@ class GltfBuilder {
     }
     if (m.refraction_index != 0.f && textured) ++refractive_;
     // What was written, so that the reader can tell an edited material.
-    ex["pbr"] = Value(Value::Object{
-        {"base", Value(Value::Array{Value(gm.pbrMetallicRoughness.baseColorFactor[0]),
-                                    Value(gm.pbrMetallicRoughness.baseColorFactor[1]),
-                                    Value(gm.pbrMetallicRoughness.baseColorFactor[2]),
-                                    Value(gm.pbrMetallicRoughness.baseColorFactor[3])})},
-        {"metallic", Value(gm.pbrMetallicRoughness.metallicFactor)},
-        {"roughness", Value(gm.pbrMetallicRoughness.roughnessFactor)}});
+    ex["pbr"] = Value(Value::Object{{"base", Value(Value::Array{Value(gm.pbrMetallicRoughness.baseColorFactor[0]),
+                                                                Value(gm.pbrMetallicRoughness.baseColorFactor[1]),
+                                                                Value(gm.pbrMetallicRoughness.baseColorFactor[2]),
+                                                                Value(gm.pbrMetallicRoughness.baseColorFactor[3])})},
+                                    {"metallic", Value(gm.pbrMetallicRoughness.metallicFactor)},
+                                    {"roughness", Value(gm.pbrMetallicRoughness.roughnessFactor)}});
     if (!textured) ex["variant_of"] = Value(mi);
     gm.extras = rayform_extras(std::move(ex));
     return gm;
@@ -825,34 +830,46 @@ class GltfBuilder {
       note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
            " segments, " + std::to_string(tessellate_sphere(Sphere{}, options_.sphere_segments).triangle_count()) +
            " triangles each)" +
-           (options_.shape_extras ? "; the exact sphere is kept in the primitive's extras" : "; no extras (--tessellate-only)"));
+           (options_.shape_extras ? "; the exact sphere is kept in the primitive's extras"
+                                  : "; no extras (--tessellate-only)"));
     if (planes_)
       note(std::to_string(planes_) + " plane(s) written as square quads of half-size " + format_float(plane_half_) +
            " around the scene" + (options_.shape_extras ? "; the exact plane is kept in the primitive's extras" : ""));
     if (untextured_uses_)
-      note(std::to_string(untextured_uses_) + " textured material(s) also used by shapes without uvs: those use an "
+      note(std::to_string(untextured_uses_) +
+           " textured material(s) also used by shapes without uvs: those use an "
            "untextured copy (glTF requires TEXCOORD_0 with a texture)");
     if (split_meshes_)
       note(std::to_string(split_meshes_) + " mesh(es) with several materials written as one primitive per material");
     if (sheared_)
       note(std::to_string(sheared_) +
-           " transform(s) with a shear, which one glTF node cannot hold, written as two nodes (scale x rotation, rotation)");
+           " transform(s) with a shear, which one glTF node cannot hold, written as two nodes (scale x rotation, "
+           "rotation)");
     if (zero_normals_)
-      note(std::to_string(zero_normals_) + " zero-length vertex normal(s) written as (0, 0, 1) (glTF requires unit normals)");
+      note(std::to_string(zero_normals_) +
+           " zero-length vertex normal(s) written as (0, 0, 1) (glTF requires unit normals)");
     if (!scene_.materials.empty())
-      note("Phong materials converted to metallic-roughness (docs/convert.md); the exact Phong values are kept in the "
-           "material extras");
-    if (!clamped_.empty()) note("materials " + quoted_list(clamped_) + ": diffuse colour outside [0, 1] clamped in baseColorFactor");
+      note(
+          "Phong materials converted to metallic-roughness (docs/convert.md); the exact Phong values are kept in the "
+          "material extras");
+    if (!clamped_.empty())
+      note("materials " + quoted_list(clamped_) + ": diffuse colour outside [0, 1] clamped in baseColorFactor");
     if (!raw_textures_.empty())
       note("textures " + quoted_list(raw_textures_) +
-           ": course textures (raw texels, texel centres on whole numbers) are kept as they are, the course's reading in "
+           ": course textures (raw texels, texel centres on whole numbers) are kept as they are, the course's reading "
+           "in "
            "the texture extras; other viewers read them as sRGB with the usual texel centres");
-    if (!converted_.empty()) note("textures " + quoted_list(converted_) + " converted to PNG (glTF holds PNG and JPEG)");
-    if (bump_maps_) note(std::to_string(bump_maps_) + " bump map(s) kept as textures named in the material extras only (glTF has height maps only as normal maps)");
+    if (!converted_.empty())
+      note("textures " + quoted_list(converted_) + " converted to PNG (glTF holds PNG and JPEG)");
+    if (bump_maps_)
+      note(
+          std::to_string(bump_maps_) +
+          " bump map(s) kept as textures named in the material extras only (glTF has height maps only as normal maps)");
     if (refractive_) note(std::to_string(refractive_) + " refraction index(es) kept in the material extras only");
     if (stretched_)
-      note("camera: the course stretches its view to the image (no aspect correction); glTF cameras keep the aspect, "
-           "which is the same picture for square images; the course camera is kept in the camera extras");
+      note(
+          "camera: the course stretches its view to the image (no aspect correction); glTF cameras keep the aspect, "
+          "which is the same picture for square images; the course camera is kept in the camera extras");
     if (raw_up_) note("camera: the 2019 dialect's raw (not orthogonal) up vector is kept in the camera extras only");
     if (no_falloff_)
       note(std::to_string(no_falloff_) +
@@ -891,7 +908,8 @@ class GltfBuilder {
     SaveResult r;
     r.files = out_.commit();
     for (const tinygltf::Mesh& m : model_.meshes)  // as readers count: each mesh once, every primitive
-      for (const tinygltf::Primitive& p : m.primitives) r.stored_triangles += model_.accessors[size_t(p.indices)].count / 3;
+      for (const tinygltf::Primitive& p : m.primitives)
+        r.stored_triangles += model_.accessors[size_t(p.indices)].count / 3;
     return r;
   }
 
@@ -910,7 +928,7 @@ class GltfBuilder {
   std::map<int, Geometry> sphere_geometry_;
   std::map<std::pair<int, int>, Geometry> mesh_geometry_;
   std::map<std::string, Geometry> stored_;  // by content
-  std::map<int, int> untextured_;  // glTF material -> its copy without texture
+  std::map<int, int> untextured_;           // glTF material -> its copy without texture
   int untextured_uses_ = 0;
   std::map<int, int> textures_;
   std::map<std::tuple<int, int, int>, int> samplers_;

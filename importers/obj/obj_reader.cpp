@@ -103,8 +103,8 @@ std::vector<std::string> split_mtllib(const std::string& rest, const fs::path& d
 struct MtlLibrary {
   std::vector<tinyobj::material_t> materials;
   std::map<std::string, int> names;
-  std::vector<fs::path> dirs;   // per material: folder of its .mtl (textures resolve there)
-  std::vector<bool> has_kd;     // per material: the .mtl gave Kd
+  std::vector<fs::path> dirs;  // per material: folder of its .mtl (textures resolve there)
+  std::vector<bool> has_kd;    // per material: the .mtl gave Kd
 };
 
 // Scans MTL text for the materials that set Kd (tinyobjloader does not say),
@@ -130,8 +130,8 @@ std::set<std::string> materials_with_kd(const std::string& text) {
 class PreloadedMaterials : public tinyobj::MaterialReader {
  public:
   explicit PreloadedMaterials(const MtlLibrary& lib) : lib_(lib) {}
-  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials,
-                  std::map<std::string, int>* names, std::string*, std::string*) override {
+  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* names,
+                  std::string*, std::string*) override {
     if (!given_) {
       *materials = lib_.materials;
       *names = lib_.names;
@@ -258,7 +258,8 @@ class ObjSceneBuilder {
       }
     }
     if (unusable)
-      warn(path_ + ": " + std::to_string(unusable) + " written normal(s) of zero length; generated normals are used there");
+      warn(path_ + ": " + std::to_string(unusable) +
+           " written normal(s) of zero length; generated normals are used there");
 
     has_colors_ = attrib.colors.size() == attrib.vertices.size() && nv > 0;
     if (has_colors_)
@@ -330,7 +331,8 @@ class ObjSceneBuilder {
       for (const std::string& name : split_mtllib(rest, dir_)) {
         Resolved r = resolve_beside(dir_, name);
         if (!r.found) {
-          warn(where + ": cannot find material library '" + name + "'; its materials are replaced by the default material");
+          warn(where + ": cannot find material library '" + name +
+               "'; its materials are replaced by the default material");
           continue;
         }
         if (r.by_name_only)
@@ -589,7 +591,8 @@ class ObjSceneBuilder {
     if (at != std::string::npos) {
       size_t line = std::strtoul(e.c_str() + at + 5, nullptr, 10);
       if (line > 0) {
-        std::string what = e.find("`f'") != std::string::npos   ? "a face with an index of 0 or no number (OBJ indices start at 1)"
+        std::string what = e.find("`f'") != std::string::npos
+                               ? "a face with an index of 0 or no number (OBJ indices start at 1)"
                            : e.find("`l'") != std::string::npos ? "a line with an index of 0 or no number"
                            : e.find("`p'") != std::string::npos ? "a point with an index of 0 or no number"
                                                                 : e;

@@ -105,15 +105,18 @@ class ObjBuilder {
       std::string ext;
       std::vector<uint8_t> bytes = rayform::texture_file(t, {"png", "jpg", "bmp", "tga"}, &ext);
       file = safe_file_name(stem_ + "_" + base) + "." + ext;
-      for (int k = 2; used_files_.count(file); ++k) file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
+      for (int k = 2; used_files_.count(file); ++k)
+        file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
       used_files_.insert(file);
       out_.add(out_.beside(file), std::move(bytes));
     } catch (const Error& e) {
-      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() + "); materials using it are untextured");
+      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+           "); materials using it are untextured");
     }
     if (t.lookup == Texture::Lookup::course) course_lookup_.insert(t.name);
     if (t.filter == Texture::Filter::nearest) nearest_.insert(t.name);
-    if (t.wrap_u == Texture::Wrap::mirror || t.wrap_v == Texture::Wrap::mirror || t.wrap_u != t.wrap_v) mirror_.insert(t.name);
+    if (t.wrap_u == Texture::Wrap::mirror || t.wrap_v == Texture::Wrap::mirror || t.wrap_u != t.wrap_v)
+      mirror_.insert(t.name);
     textures_[ti] = file;
     return file;
   }
@@ -272,12 +275,14 @@ class ObjBuilder {
     if (n.shape < 0) return;
     switch (n.shape_kind) {
       case ShapeKind::sphere:
-        write_mesh(transform_mesh(tessellate_sphere(scene_.spheres.at(size_t(n.shape)), options_.sphere_segments), world),
-                   n.material);
+        write_mesh(
+            transform_mesh(tessellate_sphere(scene_.spheres.at(size_t(n.shape)), options_.sphere_segments), world),
+            n.material);
         ++spheres_;
         break;
       case ShapeKind::plane: {
-        Plane p = is_identity(world) ? scene_.planes.at(size_t(n.shape)) : transform_plane(scene_.planes.at(size_t(n.shape)), world);
+        Plane p = is_identity(world) ? scene_.planes.at(size_t(n.shape))
+                                     : transform_plane(scene_.planes.at(size_t(n.shape)), world);
         vec3 around = extent_.empty() ? vec3(0.f) : extent_.center();
         float half = plane_quad_scale * (extent_.empty() ? 1.f : std::max(0.5f * glm::length(extent_.extent()), 1.f));
         plane_half_ = half;
@@ -323,8 +328,7 @@ class ObjBuilder {
       if (c >= 0 && size_t(c) < scene_.nodes.size() && scene_.nodes[size_t(c)].kind == Node::Kind::shape &&
           scene_.nodes[size_t(c)].children.empty())
         shapes.push_back(c);
-      else
-        others.push_back(c);
+      else others.push_back(c);
     }
     if (!shapes.empty()) {
       std::string name = n.name.empty() ? "object" : n.name;
@@ -346,8 +350,10 @@ class ObjBuilder {
 
   void report() {
     if (!options_.flattened && (baked_transforms_ || nested_))
-      note("OBJ has no transforms and no node hierarchy: transforms baked into the vertices, each node's shapes "
-           "written as one 'o' section (" + std::to_string(sections_) + " section(s))");
+      note(
+          "OBJ has no transforms and no node hierarchy: transforms baked into the vertices, each node's shapes "
+          "written as one 'o' section (" +
+          std::to_string(sections_) + " section(s))");
     if (spheres_)
       note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
            " segments; OBJ has no spheres)");
@@ -355,10 +361,12 @@ class ObjBuilder {
       note(std::to_string(planes_) + " plane(s) written as square quads of half-size " + format_float(plane_half_) +
            " around the scene (OBJ has no infinite planes)");
     if (zero_normals_)
-      note(std::to_string(zero_normals_) + " zero-length normal(s) written as 'vn 0 0 0': OBJ readers make normals "
+      note(std::to_string(zero_normals_) +
+           " zero-length normal(s) written as 'vn 0 0 0': OBJ readers make normals "
            "from the faces there");
     if (faceted_) note("meshes without normals (faceted) written with each face's normal as vn");
-    if (!scene_.cameras.empty()) note(std::to_string(scene_.cameras.size()) + " camera(s) dropped (OBJ has no cameras)");
+    if (!scene_.cameras.empty())
+      note(std::to_string(scene_.cameras.size()) + " camera(s) dropped (OBJ has no cameras)");
     if (!scene_.lights.empty()) {
       int point = 0;
       for (const Light& l : scene_.lights) point += l.kind != Light::Kind::directional;
@@ -369,18 +377,23 @@ class ObjBuilder {
     if (b.color != Background{}.color || b.ambient != vec3(0.f) || b.cube_map[0] != invalid)
       note("background colour, ambient light and cube map dropped (OBJ has no background)");
     if (!replaced_.empty())
-      note("materials " + quoted_list(replaced_) + ": their texture replaces the colour (course), written as Kd 1 1 1 "
+      note("materials " + quoted_list(replaced_) +
+           ": their texture replaces the colour (course), written as Kd 1 1 1 "
            "(the diffuse colour, used where a shape has no uvs, is dropped)");
     if (!baked_.empty()) note("materials " + quoted_list(baked_) + ": rotated uv transform baked into the vt values");
-    if (!ns_zero_.empty()) note("materials " + quoted_list(ns_zero_) + ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
+    if (!ns_zero_.empty())
+      note("materials " + quoted_list(ns_zero_) +
+           ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
     if (!cutouts_.empty()) note("materials " + quoted_list(cutouts_) + ": alpha cut-outs dropped");
     if (!single_sided_.empty())
       note("materials " + quoted_list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
     if (!one_side_lit_.empty())
-      note("materials " + quoted_list(one_side_lit_) + ": back faces will be shaded with their normals reversed towards " +
+      note("materials " + quoted_list(one_side_lit_) +
+           ": back faces will be shaded with their normals reversed towards " +
            "the viewer, as OBJ materials are (the source shades them with the normal as given)");
     if (!course_lookup_.empty())
-      note("textures " + quoted_list(course_lookup_) + ": the course's texel centres (on whole numbers) are not expressible; "
+      note("textures " + quoted_list(course_lookup_) +
+           ": the course's texel centres (on whole numbers) are not expressible; "
            "OBJ readers sample half a texel off");
     if (!nearest_.empty()) note("textures " + quoted_list(nearest_) + ": nearest filtering dropped");
     if (!mirror_.empty()) note("textures " + quoted_list(mirror_) + ": mirrored or mixed wrap modes become repeat");

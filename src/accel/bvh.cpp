@@ -29,7 +29,8 @@ struct Builder {
     uint32_t count = end - begin;
     auto make_leaf = [&] {
       BvhNode& n = out.nodes[index];
-      n.lo = bounds.lo; n.hi = bounds.hi;
+      n.lo = bounds.lo;
+      n.hi = bounds.hi;
       n.offset = uint32_t(out.primitives.size());
       n.count = uint16_t(count);
       for (uint32_t i = begin; i < end; ++i) out.primitives.push_back(items[i].id);
@@ -46,12 +47,13 @@ struct Builder {
     } else {
       // Binned SAH over the axis of widest centroid spread.
       const int nb = options.bins;
-      struct Bin { Bounds3 b; uint32_t n = 0; };
+      struct Bin {
+        Bounds3 b;
+        uint32_t n = 0;
+      };
       std::vector<Bin> bins(nb);
       float lo = centroids.lo[axis], scale = nb / (centroids.hi[axis] - lo);
-      auto bin_of = [&](const BuildItem& it) {
-        return std::min(nb - 1, int((it.centroid[axis] - lo) * scale));
-      };
+      auto bin_of = [&](const BuildItem& it) { return std::min(nb - 1, int((it.centroid[axis] - lo) * scale)); };
       for (uint32_t i = begin; i < end; ++i) {
         Bin& b = bins[bin_of(items[i])];
         b.b.expand(items[i].bounds);
@@ -60,23 +62,31 @@ struct Builder {
       // Sweep from the right to get the area of every right side.
       std::vector<float> right_area(nb);
       std::vector<uint32_t> right_count(nb);
-      Bounds3 acc; uint32_t n = 0;
+      Bounds3 acc;
+      uint32_t n = 0;
       for (int i = nb - 1; i > 0; --i) {
-        acc.expand(bins[i].b); n += bins[i].n;
-        right_area[i] = acc.surface_area(); right_count[i] = n;
+        acc.expand(bins[i].b);
+        n += bins[i].n;
+        right_area[i] = acc.surface_area();
+        right_count[i] = n;
       }
-      float best_cost = infinity; int best = -1;
-      acc = {}; n = 0;
+      float best_cost = infinity;
+      int best = -1;
+      acc = {};
+      n = 0;
       for (int i = 0; i < nb - 1; ++i) {
-        acc.expand(bins[i].b); n += bins[i].n;
+        acc.expand(bins[i].b);
+        n += bins[i].n;
         if (n == 0 || right_count[i + 1] == 0) continue;
         float cost = n * acc.surface_area() + right_count[i + 1] * right_area[i + 1];
-        if (cost < best_cost) { best_cost = cost; best = i; }
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = i;
+        }
       }
       float area = bounds.surface_area();
       float split_cost = options.traversal_cost + (area > 0.f ? best_cost / area : 0.f);
-      if (count <= uint32_t(options.max_leaf_size) && (best < 0 || split_cost >= float(count)))
-        return make_leaf();
+      if (count <= uint32_t(options.max_leaf_size) && (best < 0 || split_cost >= float(count))) return make_leaf();
       if (best < 0) {
         mid = begin + count / 2;
       } else {
@@ -93,7 +103,8 @@ struct Builder {
     build(begin, mid, depth + 1);
     uint32_t right = build(mid, end, depth + 1);
     BvhNode& n = out.nodes[index];
-    n.lo = bounds.lo; n.hi = bounds.hi;
+    n.lo = bounds.lo;
+    n.hi = bounds.hi;
     n.offset = right;
     n.count = 0;
     n.axis = uint8_t(axis);

@@ -30,9 +30,7 @@ struct Bvh {
   std::vector<BvhNode> nodes;
   std::vector<uint32_t> primitives;  // primitive ids in leaf order
   Bounds3 bounds() const { return nodes.empty() ? Bounds3{} : Bounds3{nodes[0].lo, nodes[0].hi}; }
-  size_t memory_bytes() const {
-    return nodes.capacity() * sizeof(BvhNode) + primitives.capacity() * sizeof(uint32_t);
-  }
+  size_t memory_bytes() const { return nodes.capacity() * sizeof(BvhNode) + primitives.capacity() * sizeof(uint32_t); }
 };
 
 // The builder never makes a tree deeper than this, so traversal stacks of
@@ -41,8 +39,8 @@ inline constexpr int bvh_max_depth = 120;
 inline constexpr int bvh_stack_size = bvh_max_depth + 2;
 
 struct BvhBuildOptions {
-  int max_leaf_size = 4;     // leaves never hold more than this many primitives
-  int bins = 16;             // SAH candidate planes per axis
+  int max_leaf_size = 4;       // leaves never hold more than this many primitives
+  int bins = 16;               // SAH candidate planes per axis
   float traversal_cost = 1.f;  // relative to one primitive test (mesh BVH: one test of a 4-triangle packet)
 };
 

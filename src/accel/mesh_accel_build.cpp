@@ -38,7 +38,10 @@ static_assert(sizeof(PrimRef) == 32);
 // Box in SIMD registers; lane 3 is ignored.
 struct Box {
   f4 lo = simd::splat(infinity), hi = simd::splat(-infinity);
-  void expand(f4 l, f4 h) { lo = simd::vmin(lo, l); hi = simd::vmax(hi, h); }
+  void expand(f4 l, f4 h) {
+    lo = simd::vmin(lo, l);
+    hi = simd::vmax(hi, h);
+  }
   void expand(const Box& b) { expand(b.lo, b.hi); }
   // Half the surface area; 0 for an empty box.
   float half_area() const { return simd::half_area(lo, hi); }
@@ -63,10 +66,10 @@ inline void add(Range& r, const PrimRef& p) {
 constexpr int max_bins = 64;
 
 struct Split {
-  int axis = -1;  // -1: no SAH split (split by count)
-  int nb = 0;     // bins per axis
-  int pos = 0;    // primitives in bins <= pos go left
-  float cost = infinity;  // SAH cost relative to a packet test
+  int axis = -1;                // -1: no SAH split (split by count)
+  int nb = 0;                   // bins per axis
+  int pos = 0;                  // primitives in bins <= pos go left
+  float cost = infinity;        // SAH cost relative to a packet test
   float lo = 0.f, scale = 0.f;  // bin = (c - lo) * scale on `axis`
 };
 
@@ -136,7 +139,7 @@ class MeshBuilder {
   }
 
  private:
-  static constexpr uint32_t parallel_threshold = 4096;   // smaller subtrees are built by one task
+  static constexpr uint32_t parallel_threshold = 4096;  // smaller subtrees are built by one task
   static constexpr uint32_t parallel_bin_threshold = 1u << 15;
   // Beyond this depth, splits by count (each child at most half) keep the
   // tree within sah_depth_limit + 33 levels, which bounds the traversal stack.
@@ -153,7 +156,10 @@ class MeshBuilder {
     float l[4], h[4];
     simd::store(l, b.lo);
     simd::store(h, b.hi);
-    for (int a = 0; a < 3; ++a) { c.lo[a] = l[a]; c.hi[a] = h[a]; }
+    for (int a = 0; a < 3; ++a) {
+      c.lo[a] = l[a];
+      c.hi[a] = h[a];
+    }
   }
 
   BuildChild leaf(const Range& r) const {
@@ -341,7 +347,10 @@ class MeshBuilder {
       for (int i = 0; i < k; ++i) {
         if (child_ranges[i].count() <= uint32_t(min_leaf_)) continue;
         float a = child_ranges[i].geom.half_area();
-        if (a > best_area) { best_area = a; best = i; }
+        if (a > best_area) {
+          best_area = a;
+          best = i;
+        }
       }
       if (best < 0) break;
       if (!child_splits[best]) child_splits[best] = find_split(child_ranges[best], depth);
@@ -394,7 +403,10 @@ struct Flattener {
   void write(const BuildNode* bn, uint32_t index, uint32_t packet, uint32_t tri) {
     WideBvhNode& o = out.bvh.nodes[index];
     uint32_t next_node = index + 1;
-    struct Task { const BuildNode* node; uint32_t index, packet, tri; };
+    struct Task {
+      const BuildNode* node;
+      uint32_t index, packet, tri;
+    };
     Task tasks[bvh_width];
     int ntasks = 0;
     for (int i = 0; i < bvh_width; ++i) {
@@ -455,7 +467,10 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
           for (int k = 0; k < 3; ++k) b.expand(positions[indices[3 * i + k]]);
           bool ok = !b.empty() && is_finite(b.lo) && is_finite(b.hi);
           PrimRef& p = refs[i];
-          for (int a = 0; a < 3; ++a) { p.lo[a] = b.lo[a]; p.hi[a] = b.hi[a]; }
+          for (int a = 0; a < 3; ++a) {
+            p.lo[a] = b.lo[a];
+            p.hi[a] = b.hi[a];
+          }
           p.lo[3] = std::bit_cast<float>(uint32_t(i));
           p.hi[3] = ok ? 1.f : 0.f;
           count += ok;

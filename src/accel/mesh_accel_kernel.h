@@ -124,8 +124,7 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
     // Pop the next entry still in front of the closest hit.
     for (;;) {
       if (top == 0) {
-        if (found)
-          *hit = {hit_id, hit_e[0] * hit_inv, hit_e[1] * hit_inv, hit_e[2] * hit_inv};
+        if (found) *hit = {hit_id, hit_e[0] * hit_inv, hit_e[1] * hit_inv, hit_e[2] * hit_inv};
         return found;
       }
       const Entry& e = stack[--top];

@@ -56,7 +56,9 @@ inline void prefetch_child(const WideBvhNode* nodes, const TrianglePacket* packe
   }
   for (int i = 0; i < lines; ++i) __builtin_prefetch(p + 64 * i);
 #else
-  (void)nodes; (void)packets; (void)ref;
+  (void)nodes;
+  (void)packets;
+  (void)ref;
 #endif
 }
 
@@ -65,8 +67,14 @@ inline void prefetch_child(const WideBvhNode* nodes, const TrianglePacket* packe
 // instantiated per octant, so that the rows of the near and far planes are
 // constants: bounds[near_row<Oct>(a)], bounds[far_row<Oct>(a)].
 inline int octant(const RaySlabs& s) { return s.dir_is_neg[0] | s.dir_is_neg[1] << 1 | s.dir_is_neg[2] << 2; }
-template <int Oct> constexpr int near_row(int a) { return 2 * a + ((Oct >> a) & 1); }
-template <int Oct> constexpr int far_row(int a) { return 2 * a + 1 - ((Oct >> a) & 1); }
+template <int Oct>
+constexpr int near_row(int a) {
+  return 2 * a + ((Oct >> a) & 1);
+}
+template <int Oct>
+constexpr int far_row(int a) {
+  return 2 * a + 1 - ((Oct >> a) & 1);
+}
 
 // Per-ray constants of the slab test, for the portable node test.
 struct NodeRay4 {

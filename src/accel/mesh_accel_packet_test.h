@@ -28,7 +28,9 @@ struct TriRay {
 
   explicit TriRay(const Ray& ray) {
     const TriangleRay tr = make_triangle_ray(ray);
-    kx = tr.kx; ky = tr.ky; kz = tr.kz;
+    kx = tr.kx;
+    ky = tr.ky;
+    kz = tr.kz;
     okx = simd::splat(tr.origin[kx]);
     oky = simd::splat(tr.origin[ky]);
     okz = simd::splat(tr.origin[kz]);
@@ -55,16 +57,20 @@ struct PacketHits {
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-inline PacketHits intersect_packet(const TrianglePacket& p, const TriRay& r, float tmax) {
+inline PacketHits
+intersect_packet(const TrianglePacket& p, const TriRay& r, float tmax) {
   using namespace simd;
   PacketHits h;
   // Vertices relative to the origin, permuted (rows kx, ky, kz of each vertex), sheared.
   f4 ax = load(p.v[0 + r.kx]) - r.okx, ay = load(p.v[0 + r.ky]) - r.oky, az = load(p.v[0 + r.kz]) - r.okz;
   f4 bx = load(p.v[3 + r.kx]) - r.okx, by = load(p.v[3 + r.ky]) - r.oky, bz = load(p.v[3 + r.kz]) - r.okz;
   f4 cx = load(p.v[6 + r.kx]) - r.okx, cy = load(p.v[6 + r.ky]) - r.oky, cz = load(p.v[6 + r.kz]) - r.okz;
-  ax = ax + r.sx * az; ay = ay + r.sy * az;
-  bx = bx + r.sx * bz; by = by + r.sy * bz;
-  cx = cx + r.sx * cz; cy = cy + r.sy * cz;
+  ax = ax + r.sx * az;
+  ay = ay + r.sy * az;
+  bx = bx + r.sx * bz;
+  by = by + r.sy * bz;
+  cx = cx + r.sx * cz;
+  cy = cy + r.sy * cz;
 
   f4 e0 = bx * cy - by * cx;
   f4 e1 = cx * ay - cy * ax;
@@ -74,15 +80,24 @@ inline PacketHits intersect_packet(const TrianglePacket& p, const TriRay& r, flo
   if (zero_lanes) {
     // An edge function rounded to zero: that lane's three are redone in double.
     alignas(16) float axs[4], ays[4], bxs[4], bys[4], cxs[4], cys[4], e0s[4], e1s[4], e2s[4];
-    store(axs, ax); store(ays, ay); store(bxs, bx); store(bys, by); store(cxs, cx); store(cys, cy);
-    store(e0s, e0); store(e1s, e1); store(e2s, e2);
+    store(axs, ax);
+    store(ays, ay);
+    store(bxs, bx);
+    store(bys, by);
+    store(cxs, cx);
+    store(cys, cy);
+    store(e0s, e0);
+    store(e1s, e1);
+    store(e2s, e2);
     for (int i = 0; i < 4; ++i) {
       if (!(zero_lanes >> i & 1)) continue;
       e0s[i] = float(double(bxs[i]) * double(cys[i]) - double(bys[i]) * double(cxs[i]));
       e1s[i] = float(double(cxs[i]) * double(ays[i]) - double(cys[i]) * double(axs[i]));
       e2s[i] = float(double(axs[i]) * double(bys[i]) - double(ays[i]) * double(bxs[i]));
     }
-    e0 = load(e0s); e1 = load(e1s); e2 = load(e2s);
+    e0 = load(e0s);
+    e1 = load(e1s);
+    e2 = load(e2s);
   }
   m4 has_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
   m4 has_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
@@ -93,11 +108,13 @@ inline PacketHits intersect_packet(const TrianglePacket& p, const TriRay& r, flo
   // std::max({a, b, c}) keeps the first of equal maxima, as vmax(next, current)
   // does; std::min({a, b, c}) likewise with vmin(next, current).
   const f4 max_z = vmax(vabs(cz), vmax(vabs(bz), vabs(az)));
-  az = az * r.sz; bz = bz * r.sz; cz = cz * r.sz;
+  az = az * r.sz;
+  bz = bz * r.sz;
+  cz = cz * r.sz;
   f4 t_scaled = e0 * az + e1 * bz + e2 * cz;
   const f4 tmin4 = splat(r.tmin), tmax4 = splat(tmax);
   f4 tmin_det = tmin4 * det, tmax_det = tmax4 * det;
-  m4 neg = det < zero, pos = det > zero;
+  m4 neg = det<zero, pos = det> zero;
   valid = andnot(valid, neg & ((t_scaled >= tmin_det) | (t_scaled <= tmax_det)));
   valid = andnot(valid, pos & ((t_scaled <= tmin_det) | (t_scaled >= tmax_det)));
   if (mask_bits(valid) == 0) return h;
@@ -118,13 +135,15 @@ inline PacketHits intersect_packet(const TrianglePacket& p, const TriRay& r, flo
     f4 delta_y = splat(gamma_bound(5)) * (max_yt + max_z);
     f4 delta_e = splat(2.f) * (splat(gamma_bound(2)) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
     f4 max_e = vmax(vabs(e2), vmax(vabs(e1), vabs(e0)));
-    f4 delta_t = splat(3.f) * (splat(gamma_bound(3)) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) *
-                 vabs(inv_det);
+    f4 delta_t =
+        splat(3.f) * (splat(gamma_bound(3)) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * vabs(inv_det);
     valid = valid & (front | (t > delta_t));
   }
   h.mask = mask_bits(valid);
   h.t = t;
-  h.e0 = e0; h.e1 = e1; h.e2 = e2;
+  h.e0 = e0;
+  h.e1 = e1;
+  h.e2 = e2;
   h.inv_det = inv_det;
   return h;
 }

@@ -18,8 +18,12 @@ namespace rayform::simd {
 
 #if RAYFORM_SIMD4_SSE
 
-struct f4 { __m128 v; };
-struct m4 { __m128 v; };
+struct f4 {
+  __m128 v;
+};
+struct m4 {
+  __m128 v;
+};
 
 inline f4 load(const float* p) { return {_mm_load_ps(p)}; }  // 16-byte aligned
 inline f4 loadu(const float* p) { return {_mm_loadu_ps(p)}; }
@@ -64,21 +68,27 @@ inline void to_int_clamped(f4 a, int hi, int out[4]) {
 
 #else
 
-struct f4 { float v[4]; };
-struct m4 { uint32_t v[4]; };
+struct f4 {
+  float v[4];
+};
+struct m4 {
+  uint32_t v[4];
+};
 
-#define RAYFORM_F4_OP(expr)           \
-  f4 r;                               \
+#define RAYFORM_F4_OP(expr)                    \
+  f4 r;                                        \
   for (int i = 0; i < 4; ++i) r.v[i] = (expr); \
   return r
-#define RAYFORM_M4_OP(expr)           \
-  m4 r;                               \
+#define RAYFORM_M4_OP(expr)                               \
+  m4 r;                                                   \
   for (int i = 0; i < 4; ++i) r.v[i] = (expr) ? ~0u : 0u; \
   return r
 
 inline f4 load(const float* p) { RAYFORM_F4_OP(p[i]); }
 inline f4 loadu(const float* p) { RAYFORM_F4_OP(p[i]); }
-inline void store(float* p, f4 a) { for (int i = 0; i < 4; ++i) p[i] = a.v[i]; }
+inline void store(float* p, f4 a) {
+  for (int i = 0; i < 4; ++i) p[i] = a.v[i];
+}
 inline f4 splat(float x) { RAYFORM_F4_OP(x); }
 inline f4 operator+(f4 a, f4 b) { RAYFORM_F4_OP(a.v[i] + b.v[i]); }
 inline f4 operator-(f4 a, f4 b) { RAYFORM_F4_OP(a.v[i] - b.v[i]); }
@@ -92,10 +102,26 @@ inline m4 operator<=(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] <= b.v[i]); }
 inline m4 operator>(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] > b.v[i]); }
 inline m4 operator>=(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] >= b.v[i]); }
 inline m4 operator==(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] == b.v[i]); }
-inline m4 operator|(m4 a, m4 b) { m4 r; for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] | b.v[i]; return r; }
-inline m4 operator&(m4 a, m4 b) { m4 r; for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] & b.v[i]; return r; }
-inline m4 andnot(m4 a, m4 b) { m4 r; for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] & ~b.v[i]; return r; }
-inline m4 operator~(m4 a) { m4 r; for (int i = 0; i < 4; ++i) r.v[i] = ~a.v[i]; return r; }
+inline m4 operator|(m4 a, m4 b) {
+  m4 r;
+  for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] | b.v[i];
+  return r;
+}
+inline m4 operator&(m4 a, m4 b) {
+  m4 r;
+  for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] & b.v[i];
+  return r;
+}
+inline m4 andnot(m4 a, m4 b) {
+  m4 r;
+  for (int i = 0; i < 4; ++i) r.v[i] = a.v[i] & ~b.v[i];
+  return r;
+}
+inline m4 operator~(m4 a) {
+  m4 r;
+  for (int i = 0; i < 4; ++i) r.v[i] = ~a.v[i];
+  return r;
+}
 inline int mask_bits(m4 m) {
   int r = 0;
   for (int i = 0; i < 4; ++i) r |= int(m.v[i] >> 31) << i;

@@ -20,11 +20,20 @@ struct Bounds3 {
     vec3 e = extent();
     return 2.f * (e.x * e.y + e.y * e.z + e.z * e.x);
   }
-  void expand(vec3 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
-  void expand(const Bounds3& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+  void expand(vec3 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void expand(const Bounds3& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
 };
 
-inline Bounds3 merge(Bounds3 a, const Bounds3& b) { a.expand(b); return a; }
+inline Bounds3 merge(Bounds3 a, const Bounds3& b) {
+  a.expand(b);
+  return a;
+}
 
 // Bounds of an affinely transformed box (the eight corners, transformed).
 inline Bounds3 transform_bounds(const mat4& m, const Bounds3& b) {
@@ -53,8 +62,7 @@ inline RaySlabs make_ray_slabs(const Ray& r) {
 
 // Slab test, conservative: the far distance is scaled up by 1 + 2 gamma(3) as in
 // pbrt-v4 so that rounding never culls a box the ray truly passes through.
-inline bool slab_hit(const vec3& lo, const vec3& hi, const RaySlabs& s, float tmin, float tmax,
-                     float* t_enter) {
+inline bool slab_hit(const vec3& lo, const vec3& hi, const RaySlabs& s, float tmin, float tmax, float* t_enter) {
   const vec3 b[2] = {lo, hi};
   float t0 = tmin, t1 = tmax;
   constexpr float far_scale = 1.f + 2.f * gamma_bound(3);

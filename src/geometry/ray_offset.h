@@ -92,7 +92,8 @@ inline PointError plane_point(vec3 p, vec3 normal, float offset) {
   const double w = 2.0 * std::abs(k) + s / nn;
   const double g = detail::gamma_bound_double(8);
   for (int i = 0; i < 3; ++i)
-    r.error[i] = float(g * (std::abs(double(p[i])) + w * std::abs(double(normal[i])))) + gamma_bound(1) * std::abs(r.p[i]);
+    r.error[i] =
+        float(g * (std::abs(double(p[i])) + w * std::abs(double(normal[i])))) + gamma_bound(1) * std::abs(r.p[i]);
   return r;
 }
 
@@ -111,8 +112,7 @@ inline PointError transform_point(const mat4& m, const PointError& pe) {
     const float a = m[0][i] * p.x, b = m[1][i] * p.y, c = m[2][i] * p.z;
     r.p[i] = (a + b) + (c + m[3][i]);
     r.error[i] = gamma_bound(3) * (std::abs(a) + std::abs(b) + std::abs(c) + std::abs(m[3][i])) +
-                 (1.f + gamma_bound(3)) *
-                     (std::abs(m[0][i]) * e.x + std::abs(m[1][i]) * e.y + std::abs(m[2][i]) * e.z);
+                 (1.f + gamma_bound(3)) * (std::abs(m[0][i]) * e.x + std::abs(m[1][i]) * e.y + std::abs(m[2][i]) * e.z);
   }
   return r;
 }

@@ -35,8 +35,14 @@ inline bool sphere_roots(vec3 origin, vec3 direction, vec3 center, float radius,
 inline bool intersect_sphere(const Ray& r, vec3 center, float radius, float* t_hit) {
   float t0, t1;
   if (!sphere_roots(r.origin, r.direction, center, radius, &t0, &t1)) return false;
-  if (t0 > r.tmin && t0 < r.tmax) { *t_hit = t0; return true; }
-  if (t1 > r.tmin && t1 < r.tmax) { *t_hit = t1; return true; }
+  if (t0 > r.tmin && t0 < r.tmax) {
+    *t_hit = t0;
+    return true;
+  }
+  if (t1 > r.tmin && t1 < r.tmax) {
+    *t_hit = t1;
+    return true;
+  }
   return false;
 }
 

@@ -49,9 +49,12 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   a = vec3(a[r.kx], a[r.ky], a[r.kz]);
   b = vec3(b[r.kx], b[r.ky], b[r.kz]);
   c = vec3(c[r.kx], c[r.ky], c[r.kz]);
-  a.x += r.sx * a.z; a.y += r.sy * a.z;
-  b.x += r.sx * b.z; b.y += r.sy * b.z;
-  c.x += r.sx * c.z; c.y += r.sy * c.z;
+  a.x += r.sx * a.z;
+  a.y += r.sy * a.z;
+  b.x += r.sx * b.z;
+  b.y += r.sy * b.z;
+  c.x += r.sx * c.z;
+  c.y += r.sy * c.z;
 
   // Edge functions: e0 for the edge b-c (weight of p0), e1 for c-a, e2 for a-b.
   float e0 = b.x * c.y - b.y * c.x;
@@ -69,7 +72,9 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   // Largest |z| of the translated vertices before the scaling by sz, in scene
   // units: the sheared x + sx z and y + sy z round relative to it (|sx|, |sy| <= 1).
   const float max_z = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
-  a.z *= r.sz; b.z *= r.sz; c.z *= r.sz;
+  a.z *= r.sz;
+  b.z *= r.sz;
+  c.z *= r.sz;
   float t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
   // Range test on the scaled distance (avoids the division for rejected hits).
   if (det < 0.f && (t_scaled >= tmin * det || t_scaled <= tmax * det)) return false;
@@ -95,8 +100,7 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   float delta_y = gamma_bound(5) * (max_yt + max_z);
   float delta_e = 2.f * (gamma_bound(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
   float max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
-  float delta_t =
-      3.f * (gamma_bound(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::abs(inv_det);
+  float delta_t = 3.f * (gamma_bound(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::abs(inv_det);
   if (!(t > delta_t)) return false;
 
   hit->t = t;

@@ -44,7 +44,10 @@ std::string write_image_temporary(const std::string& path, const Image& image) {
   // writers that look at it), so that the rename is atomic.
   fs::path target(path);
   std::string tmp_name = ".";  // (built by appends: GCC 12 warns falsely on "." + string)
-  tmp_name.append(target.stem().string()).append(".tmp").append(std::to_string(getpid())).append(target.extension().string());
+  tmp_name.append(target.stem().string())
+      .append(".tmp")
+      .append(std::to_string(getpid()))
+      .append(target.extension().string());
   fs::path tmp = target.parent_path() / tmp_name;
   std::string error;
   bool ok = use_stb ? stb_write(tmp.string(), ext, image, &error) : oiio_write(path, tmp.string(), image, &error);

@@ -39,9 +39,15 @@ const Plugin& plugin() {
 #endif
     std::string tried;
     for (const fs::path& c : candidates) {
-      if (!fs::exists(c)) { tried.append(" ").append(c.string()); continue; }
+      if (!fs::exists(c)) {
+        tried.append(" ").append(c.string());
+        continue;
+      }
       void* h = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!h) { failure = dlerror(); continue; }
+      if (!h) {
+        failure = dlerror();
+        continue;
+      }
       p.can_write = reinterpret_cast<rayform_oiio_can_write_fn>(dlsym(h, "rayform_oiio_can_write"));
       p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read"));
       p.free = reinterpret_cast<rayform_oiio_free_fn>(dlsym(h, "rayform_oiio_free"));
@@ -51,7 +57,9 @@ const Plugin& plugin() {
       failure.append(" lacks the rayform_oiio_* functions");
       p = {};
     }
-    if (failure.empty()) failure = std::string("librayform_oiio.so not found (looked at").append(tried).append("; set RAYFORM_OIIO_PLUGIN)");
+    if (failure.empty())
+      failure =
+          std::string("librayform_oiio.so not found (looked at").append(tried).append("; set RAYFORM_OIIO_PLUGIN)");
   });
   if (!p.write) throw Error("OpenImageIO plugin unavailable: " + failure);
   return p;

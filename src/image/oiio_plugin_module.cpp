@@ -25,7 +25,7 @@ __attribute__((visibility("default"))) int rayform_oiio_can_write(const char* pa
 }
 
 __attribute__((visibility("default"))) int rayform_oiio_read(const char* path, int* width, int* height, int* channels,
-                                                              float** pixels, char* error, size_t error_size) {
+                                                             float** pixels, char* error, size_t error_size) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
     set_error(error, error_size, OIIO::geterror());
@@ -49,8 +49,8 @@ __attribute__((visibility("default"))) int rayform_oiio_read(const char* path, i
 __attribute__((visibility("default"))) void rayform_oiio_free(float* pixels) { std::free(pixels); }
 
 __attribute__((visibility("default"))) int rayform_oiio_write(const char* format_path, const char* path, int width,
-                                                               int height, int channels, const float* pixels,
-                                                               char* error, size_t error_size) {
+                                                              int height, int channels, const float* pixels,
+                                                              char* error, size_t error_size) {
   auto out = OIIO::ImageOutput::create(format_path);
   if (!out) {
     set_error(error, error_size, "no writer for this file type");

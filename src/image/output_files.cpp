@@ -108,5 +108,4 @@ std::vector<std::string> OutputFiles::commit() {
   return done;
 }
 
-
 }  // namespace rayform

@@ -22,7 +22,10 @@ bool stb_read(const std::string& path, Image* image, std::string* error) {
   int w = 0, h = 0, c = 0;
   if (stbi_is_hdr(path.c_str())) {
     float* data = stbi_loadf(path.c_str(), &w, &h, &c, 0);
-    if (!data) { *error = stbi_failure_reason(); return false; }
+    if (!data) {
+      *error = stbi_failure_reason();
+      return false;
+    }
     *image = Image(w, h, c);
     std::copy(data, data + size_t(w) * h * c, image->pixels.begin());
     stbi_image_free(data);
@@ -30,14 +33,20 @@ bool stb_read(const std::string& path, Image* image, std::string* error) {
   }
   if (stbi_is_16_bit(path.c_str())) {
     stbi_us* data = stbi_load_16(path.c_str(), &w, &h, &c, 0);
-    if (!data) { *error = stbi_failure_reason(); return false; }
+    if (!data) {
+      *error = stbi_failure_reason();
+      return false;
+    }
     *image = Image(w, h, c);
     for (size_t i = 0; i < image->pixels.size(); ++i) image->pixels[i] = data[i] / 65535.f;
     stbi_image_free(data);
     return true;
   }
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &c, 0);
-  if (!data) { *error = stbi_failure_reason(); return false; }
+  if (!data) {
+    *error = stbi_failure_reason();
+    return false;
+  }
   *image = Image(w, h, c);
   for (size_t i = 0; i < image->pixels.size(); ++i) image->pixels[i] = data[i] / 255.f;
   stbi_image_free(data);
@@ -48,8 +57,13 @@ bool stb_read8(const std::string& path, Image8* image, std::string* error) {
   if (stbi_is_hdr(path.c_str()) || stbi_is_16_bit(path.c_str())) return false;
   int w = 0, h = 0, c = 0;
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &c, 0);
-  if (!data) { *error = stbi_failure_reason(); return false; }
-  image->width = w; image->height = h; image->channels = c;
+  if (!data) {
+    *error = stbi_failure_reason();
+    return false;
+  }
+  image->width = w;
+  image->height = h;
+  image->channels = c;
   image->pixels.assign(data, data + size_t(w) * h * c);
   stbi_image_free(data);
   return true;

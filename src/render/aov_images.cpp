@@ -10,10 +10,8 @@ Image depth_image(const RenderResult& r, float lo, float hi, DepthStyle style) {
   for (size_t i = 0; i < r.depth.size(); ++i) {
     float t = r.depth[i], v = 0.f;
     if (std::isfinite(t)) {
-      if (style == DepthStyle::near_white)
-        v = t < lo ? 1.f : (t > hi ? 0.f : (hi - t) / (hi - lo));
-      else
-        v = std::clamp((t - lo) / (hi - lo), 0.f, 1.f);
+      if (style == DepthStyle::near_white) v = t < lo ? 1.f : (t > hi ? 0.f : (hi - t) / (hi - lo));
+      else v = std::clamp((t - lo) / (hi - lo), 0.f, 1.f);
     }
     img.pixels[3 * i] = img.pixels[3 * i + 1] = img.pixels[3 * i + 2] = v;
   }

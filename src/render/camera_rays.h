@@ -11,8 +11,8 @@ namespace rayform {
 
 struct CameraFrame {
   vec3 origin;
-  vec3 u, v, w;       // right, up (image plane), forward
-  float focal = 1.f;  // D = 1 / tan(fov/2), computed in double
+  vec3 u, v, w;              // right, up (image plane), forward
+  float focal = 1.f;         // D = 1 / tan(fov/2), computed in double
   float sx = 1.f, sy = 1.f;  // scale of the image coordinates (aspect)
   float half_height = 1.f;   // orthographic: half the view height
   bool orthographic = false;

@@ -24,16 +24,31 @@ inline vec3 sample_cube_map(const std::vector<TextureImage>& faces, vec3 directi
   vec2 uv;
   if (a.x >= a.y && a.x >= a.z) {
     float s = (d.z / d.x + 1.f) * 0.5f, t = (d.y / d.x + 1.f) * 0.5f;
-    if (d.x > 0.f) { face = cube_right; uv = vec2(s, t); }
-    else { face = cube_left; uv = vec2(s, 1.f - t); }
+    if (d.x > 0.f) {
+      face = cube_right;
+      uv = vec2(s, t);
+    } else {
+      face = cube_left;
+      uv = vec2(s, 1.f - t);
+    }
   } else if (a.y >= a.z) {
     float s = (d.x / d.y + 1.f) * 0.5f, t = (d.z / d.y + 1.f) * 0.5f;
-    if (d.y > 0.f) { face = cube_up; uv = vec2(s, t); }
-    else { face = cube_down; uv = vec2(1.f - s, 1.f - t); }
+    if (d.y > 0.f) {
+      face = cube_up;
+      uv = vec2(s, t);
+    } else {
+      face = cube_down;
+      uv = vec2(1.f - s, 1.f - t);
+    }
   } else {
     float s = (d.x / d.z + 1.f) * 0.5f, t = (d.y / d.z + 1.f) * 0.5f;
-    if (d.z > 0.f) { face = cube_front; uv = vec2(1.f - s, t); }
-    else { face = cube_back; uv = vec2(s, 1.f - t); }
+    if (d.z > 0.f) {
+      face = cube_front;
+      uv = vec2(1.f - s, t);
+    } else {
+      face = cube_back;
+      uv = vec2(s, 1.f - t);
+    }
   }
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return vec3(0.f);  // zero or NaN direction
   return vec3(sample_texture(faces[face], uv));

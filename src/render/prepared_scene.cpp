@@ -119,7 +119,10 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     int t = m.diffuse_texture;
     if (t >= 0 && t < int(scene.textures.size())) {
       f.textures = true;
-      if (!queued[t]) { queued[t] = 1; to_decode.push_back({t, &p.textures[t]}); }
+      if (!queued[t]) {
+        queued[t] = 1;
+        to_decode.push_back({t, &p.textures[t]});
+      }
     }
   }
   for (const Light& l : scene.lights) {
@@ -137,9 +140,8 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   }
   // Decode the used textures and cube-map faces in parallel (PNG/JPEG decoding
   // dominates preparation of textured scenes).
-  tbb::parallel_for(size_t(0), to_decode.size(), [&](size_t j) {
-    *to_decode[j].second = decode_texture(scene.textures[to_decode[j].first]);
-  });
+  tbb::parallel_for(size_t(0), to_decode.size(),
+                    [&](size_t j) { *to_decode[j].second = decode_texture(scene.textures[to_decode[j].first]); });
   return p;
 }
 

@@ -17,8 +17,8 @@ namespace rayform {
 
 struct Instance {
   ShapeKind kind = ShapeKind::mesh;
-  int shape = invalid;     // index into the Scene's array of this kind
-  int material = invalid;  // index into PreparedScene::materials
+  int shape = invalid;         // index into the Scene's array of this kind
+  int material = invalid;      // index into PreparedScene::materials
   bool has_transform = false;  // false: object space is world space
   mat4 to_world{1.f};
   mat4 to_object{1.f};
@@ -32,16 +32,16 @@ struct Instance {
 // flags (its per-light and per-instance branches test the data itself);
 // prepare records them and tests/unit/prepare_test.cpp checks them.
 struct SceneFeatures {
-  bool textures = false;       // some hit material samples a texture
-  bool specular = false;       // some material has a non-zero specular colour
-  bool point_lights = false;   // point or spot lights
-  bool transforms = false;     // some instance has a non-identity transform
-  bool planes = false;         // unbounded planes, tested outside the BVH
-  bool cube_map = false;       // background from a cube map
-  bool alpha_cutout = false;   // some material has an alpha cut-out
-  bool single_sided = false;   // some material is single-sided (back faces culled)
+  bool textures = false;      // some hit material samples a texture
+  bool specular = false;      // some material has a non-zero specular colour
+  bool point_lights = false;  // point or spot lights
+  bool transforms = false;    // some instance has a non-identity transform
+  bool planes = false;        // unbounded planes, tested outside the BVH
+  bool cube_map = false;      // background from a cube map
+  bool alpha_cutout = false;  // some material has an alpha cut-out
+  bool single_sided = false;  // some material is single-sided (back faces culled)
   bool vertex_colors = false;
-  bool falloff = false;        // some point light attenuates with distance
+  bool falloff = false;  // some point light attenuates with distance
 };
 
 struct PrepareOptions {
@@ -52,13 +52,13 @@ struct PreparedScene {
   const Scene* scene = nullptr;
   std::vector<Instance> instances;
   std::vector<uint32_t> plane_instances;  // instances of planes (unbounded, outside `top`)
-  Bvh top;                                 // over the bounded instances
-  std::vector<MeshAccel> meshes;           // per Scene mesh; empty if unused
-  std::vector<TextureImage> textures;      // per Scene texture; empty image if unused
-  std::vector<Material> materials;         // the Scene's, then one default material
-  std::vector<TextureImage> cube_map;      // six faces, or empty
+  Bvh top;                                // over the bounded instances
+  std::vector<MeshAccel> meshes;          // per Scene mesh; empty if unused
+  std::vector<TextureImage> textures;     // per Scene texture; empty image if unused
+  std::vector<Material> materials;        // the Scene's, then one default material
+  std::vector<TextureImage> cube_map;     // six faces, or empty
   SceneFeatures features;
-  Bounds3 bounds;                          // of the bounded instances, world space
+  Bounds3 bounds;  // of the bounded instances, world space
 
   size_t memory_bytes() const;
 };

@@ -181,12 +181,16 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
         }
         float* c = res.color.at(x, y);
-        c[0] = px.color.r; c[1] = px.color.g; c[2] = px.color.b;
+        c[0] = px.color.r;
+        c[1] = px.color.g;
+        c[2] = px.color.b;
         if (o.depth) res.depth[pixel] = px.depth;
         if (o.normals) res.normals[pixel] = px.normal;
         if (o.albedo) {
           float* a = res.albedo.at(x, y);
-          a[0] = px.albedo.r; a[1] = px.albedo.g; a[2] = px.albedo.b;
+          a[0] = px.albedo.r;
+          a[1] = px.albedo.g;
+          a[2] = px.albedo.b;
         }
       }
     if (o.progress) {

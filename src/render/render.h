@@ -16,15 +16,15 @@ namespace rayform {
 // render_options_problem below, and the command line fills this struct (no copy).
 struct RenderOptions {
   int width = 200, height = 200;  // pixels (the course's default size)
-  int camera = 0;                  // index into Scene::cameras
-  int threads = 0;                 // 0: all hardware threads
-  bool shadows = false;            // shadow rays to each light
-  int bounces = 0;                 // reflection/refraction depth
-  int spp = 1;                     // samples per pixel (1: the pixel centre only)
+  int camera = 0;                 // index into Scene::cameras
+  int threads = 0;                // 0: all hardware threads
+  bool shadows = false;           // shadow rays to each light
+  int bounces = 0;                // reflection/refraction depth
+  int spp = 1;                    // samples per pixel (1: the pixel centre only)
   PixelFilter filter = PixelFilter::box;
   // Which per-pixel outputs to fill besides colour.
   bool depth = false, normals = false, albedo = false;
-  bool generic = false;            // force the general path (no feature specialisation)
+  bool generic = false;  // force the general path (no feature specialisation)
   int tile_size = 16;
   // Called with the fraction of tiles done (from worker threads, serialised).
   std::function<void(float)> progress;
@@ -37,10 +37,10 @@ struct RenderOptions {
 // unlit surface colour K.
 struct RenderResult {
   int width = 0, height = 0;
-  Image color;                 // 3 channels, linear, unclamped
+  Image color;  // 3 channels, linear, unclamped
   std::vector<float> depth;
   std::vector<vec3> normals;
-  Image albedo;                // 3 channels
+  Image albedo;  // 3 channels
 };
 
 // What is wrong with `options`, "" when nothing: the one check of the

@@ -113,7 +113,7 @@ struct SurfacePoint {
   vec3 geometric_normal{0.f, 0.f, 1.f};  // unit length
   vec2 uv{0.f};
   bool has_uv = false;
-  vec3 color{1.f};                       // vertex colour (1 when absent)
+  vec3 color{1.f};  // vertex colour (1 when absent)
   int material = invalid;
 };
 

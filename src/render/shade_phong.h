@@ -12,9 +12,9 @@ namespace rayform {
 
 // Direction to a light and its colour arriving at point p (before shading).
 struct LightSample {
-  vec3 to_light;       // unit vector from p towards the light
-  vec3 color;          // incident colour (after falloff / spot cone)
-  float distance;      // to the light; infinity for directional lights
+  vec3 to_light;   // unit vector from p towards the light
+  vec3 color;      // incident colour (after falloff / spot cone)
+  float distance;  // to the light; infinity for directional lights
 };
 
 inline LightSample sample_light(const Light& l, vec3 p) {

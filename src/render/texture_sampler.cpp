@@ -37,7 +37,8 @@ TextureImage decode_texture(const Texture& texture) {
     t.height = texture.pixels.empty() ? img8.height : texture.height;
     if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
     t.rgba8.resize(size_t(t.width) * t.height * 4);
-    for (size_t i = 0; i < size_t(t.width) * t.height; ++i) expand_to_rgba(src + i * c, c, uint8_t(255), &t.rgba8[i * 4]);
+    for (size_t i = 0; i < size_t(t.width) * t.height; ++i)
+      expand_to_rgba(src + i * c, c, uint8_t(255), &t.rgba8[i * 4]);
     return t;
   }
   Image src = read_image(texture.path);
@@ -60,7 +61,10 @@ namespace {
 int wrap_index(int i, int n, Texture::Wrap w) {
   switch (w) {
     case Texture::Wrap::clamp: return std::clamp(i, 0, n - 1);
-    case Texture::Wrap::repeat: { int m = i % n; return m < 0 ? m + n : m; }
+    case Texture::Wrap::repeat: {
+      int m = i % n;
+      return m < 0 ? m + n : m;
+    }
     case Texture::Wrap::mirror: {
       int period = 2 * n;
       int m = i % period;
@@ -85,13 +89,14 @@ vec4 sample_texture(const TextureImage& t, vec2 uv) {
     // Clamp in float first: uv far outside [0,1] must not overflow the int cast.
     int ix = int(std::clamp(fx, -1.f, float(w))), iy = int(std::clamp(fy, -1.f, float(h)));
     auto at = [&](int i, int j) { return t.texel(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1)); };
-    return (1 - ax) * (1 - ay) * at(ix, iy) + ax * (1 - ay) * at(ix + 1, iy) +
-           (1 - ax) * ay * at(ix, iy + 1) + ax * ay * at(ix + 1, iy + 1);
+    return (1 - ax) * (1 - ay) * at(ix, iy) + ax * (1 - ay) * at(ix + 1, iy) + (1 - ax) * ay * at(ix, iy + 1) +
+           ax * ay * at(ix + 1, iy + 1);
   }
   float x = uv.x * w - 0.5f, y = (1.f - uv.y) * h - 0.5f;
   if (!std::isfinite(x) || !std::isfinite(y)) return t.texel(0, 0);
   // Keep the integer conversion in range; wrapping makes far values equivalent.
-  x = std::fmod(x, float(2 * w)); y = std::fmod(y, float(2 * h));
+  x = std::fmod(x, float(2 * w));
+  y = std::fmod(y, float(2 * h));
   if (t.filter == Texture::Filter::nearest) {
     int ix = int(std::floor(x + 0.5f)), iy = int(std::floor(y + 0.5f));
     return t.texel(wrap_index(ix, w, t.wrap_u), wrap_index(iy, h, t.wrap_v));
@@ -101,8 +106,8 @@ vec4 sample_texture(const TextureImage& t, vec2 uv) {
   int ix = int(fx), iy = int(fy);
   int x0 = wrap_index(ix, w, t.wrap_u), x1 = wrap_index(ix + 1, w, t.wrap_u);
   int y0 = wrap_index(iy, h, t.wrap_v), y1 = wrap_index(iy + 1, h, t.wrap_v);
-  return (1 - ax) * (1 - ay) * t.texel(x0, y0) + ax * (1 - ay) * t.texel(x1, y0) +
-         (1 - ax) * ay * t.texel(x0, y1) + ax * ay * t.texel(x1, y1);
+  return (1 - ax) * (1 - ay) * t.texel(x0, y0) + ax * (1 - ay) * t.texel(x1, y0) + (1 - ax) * ay * t.texel(x0, y1) +
+         ax * ay * t.texel(x1, y1);
 }
 
 }  // namespace rayform

@@ -14,8 +14,8 @@ namespace rayform {
 
 struct TextureImage {
   int width = 0, height = 0;
-  std::vector<uint8_t> rgba8;        // 8-bit sources, RGBA
-  std::vector<float> rgbaf;          // other sources, linear RGBA
+  std::vector<uint8_t> rgba8;          // 8-bit sources, RGBA
+  std::vector<float> rgbaf;            // other sources, linear RGBA
   std::array<float, 256> to_linear{};  // colour channels of rgba8 (alpha: v * (1/255), never sRGB-decoded)
   Texture::Wrap wrap_u = Texture::Wrap::repeat, wrap_v = Texture::Wrap::repeat;
   Texture::Filter filter = Texture::Filter::linear;

@@ -10,11 +10,11 @@ Mesh make_icosphere(int levels) {
   const float t = (1.f + std::sqrt(5.f)) / 2.f;
   Mesh m;
   m.name = "icosphere" + std::to_string(levels);
-  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (vec3& p : m.positions) p = glm::normalize(p);
-  m.indices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-               3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  m.indices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
+               3, 9,  4, 3, 4, 2, 3, 2, 6, 3, 6, 8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
     auto mid = [&](uint32_t a, uint32_t b) {
@@ -53,7 +53,11 @@ Mesh make_cube() {
 namespace {
 // Small deterministic hash to [0, 1).
 float hash01(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
   return float(x >> 8) * (1.f / 16777216.f);
 }
 }  // namespace
@@ -72,14 +76,16 @@ Mesh make_bumpy_torus(size_t target_triangles, uint32_t seed) {
   Mesh m;
   m.name = "bumpy_torus";
   m.positions.resize(rings * segments);
-  for (size_t i = 0; i < segments; ++i) {    // around the main circle
+  for (size_t i = 0; i < segments; ++i) {  // around the main circle
     float u = 6.2831853f * float(i) / float(segments);
-    for (size_t j = 0; j < rings; ++j) {     // around the tube
+    for (size_t j = 0; j < rings; ++j) {  // around the tube
       float v = 6.2831853f * float(j) / float(rings);
       float bump = 0.f;
-      for (int k = 0; k < 4; ++k) bump += 0.02f * std::sin(freq[k] * (k % 2 ? u : v) + phase[k] + float(k) * u * v * 0.1f);
+      for (int k = 0; k < 4; ++k)
+        bump += 0.02f * std::sin(freq[k] * (k % 2 ? u : v) + phase[k] + float(k) * u * v * 0.1f);
       float rr = r * (1.f + bump);
-      m.positions[i * rings + j] = vec3((R + rr * std::cos(v)) * std::cos(u), rr * std::sin(v), (R + rr * std::cos(v)) * std::sin(u));
+      m.positions[i * rings + j] =
+          vec3((R + rr * std::cos(v)) * std::cos(u), rr * std::sin(v), (R + rr * std::cos(v)) * std::sin(u));
     }
   }
   m.indices.reserve(rings * segments * 6);
@@ -94,7 +100,9 @@ Mesh make_bumpy_torus(size_t target_triangles, uint32_t seed) {
   for (size_t t = 0; t < m.indices.size(); t += 3) {
     uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
     vec3 n = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
-    m.normals[a] += n; m.normals[b] += n; m.normals[c] += n;
+    m.normals[a] += n;
+    m.normals[b] += n;
+    m.normals[c] += n;
   }
   for (vec3& n : m.normals) n = glm::normalize(n);
   return m;

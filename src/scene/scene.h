@@ -35,8 +35,8 @@ struct Camera {
   vec3 center{0.f, 0.f, 0.f};
   vec3 direction{0.f, 0.f, -1.f};
   vec3 up{0.f, 1.f, 0.f};
-  float fov_deg = 30.f;     // full opening angle (perspective), degrees
-  float ortho_height = 2.f; // full height of the view (orthographic), world units
+  float fov_deg = 30.f;      // full opening angle (perspective), degrees
+  float ortho_height = 2.f;  // full height of the view (orthographic), world units
 };
 
 struct Light {
@@ -44,8 +44,8 @@ struct Light {
   std::string name;
   Kind kind = Kind::directional;
   vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (directional, spot)
-  vec3 position{0.f};               // point, spot
-  vec3 color{1.f};                  // radiance scale, linear
+  vec3 position{0.f};              // point, spot
+  vec3 color{1.f};                 // radiance scale, linear
   // Point/spot attenuation: colour / (falloff * distance^2); 0 means none (course 2012).
   float falloff = 0.f;
   float range = 0.f;  // glTF range, 0 = infinite
@@ -92,10 +92,10 @@ struct Material {
   vec3 specular{0.f};
   float shininess = 0.f;  // Phong exponent
   vec3 emission{0.f};
-  int diffuse_texture = invalid;  // where the hit has uvs: K = diffuse x texel, or the texel alone (below)
-  bool texture_modulates = false; // true: K = diffuse * texel (assets); false: K = texel (course)
+  int diffuse_texture = invalid;   // where the hit has uvs: K = diffuse x texel, or the texel alone (below)
+  bool texture_modulates = false;  // true: K = diffuse * texel (assets); false: K = texel (course)
   UvTransform uv_transform;
-  float alpha_cutoff = -1.f;      // < 0: opaque; else texel alpha below it is a hole
+  float alpha_cutoff = -1.f;  // < 0: opaque; else texel alpha below it is a hole
   // false: back faces (seen against the winding's normal) are culled for
   // camera and secondary rays, as glTF's doubleSided=false; shadows still fall.
   bool double_sided = true;
@@ -104,9 +104,9 @@ struct Material {
   // the normal as given (the course format, whose reference does not flip).
   // Refractive materials keep their normals: inside and outside matter there.
   bool two_sided_lighting = false;
-  float refraction_index = 0.f;   // 0: opaque
-  bool unlit = false;             // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
-  int bump_texture = invalid;     // parsed and kept (course 2019 `bump`)
+  float refraction_index = 0.f;  // 0: opaque
+  bool unlit = false;            // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
+  int bump_texture = invalid;    // parsed and kept (course 2019 `bump`)
 };
 
 struct Sphere {
@@ -130,12 +130,12 @@ struct Triangle {
 // Triangle mesh with per-vertex attributes (each optional but positions).
 struct Mesh {
   std::string name;
-  std::string source_path;     // file it was read from, if any
+  std::string source_path;  // file it was read from, if any
   std::vector<vec3> positions;
-  std::vector<vec3> normals;   // empty: face normals
-  std::vector<vec2> uvs;       // empty: no texture coordinates
-  std::vector<vec3> colors;    // empty: no vertex colours
-  std::vector<uint32_t> indices;  // three per triangle
+  std::vector<vec3> normals;        // empty: face normals
+  std::vector<vec2> uvs;            // empty: no texture coordinates
+  std::vector<vec3> colors;         // empty: no vertex colours
+  std::vector<uint32_t> indices;    // three per triangle
   std::vector<int> face_materials;  // empty: the node's material for every face
   size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -168,7 +168,7 @@ struct Node {
 struct Background {
   vec3 color{0.5f};
   vec3 ambient{0.f};
-  std::string cube_map_dir;                      // as written in the scene
+  std::string cube_map_dir;  // as written in the scene
   std::array<int, 6> cube_map{invalid, invalid, invalid, invalid, invalid, invalid};
 };
 

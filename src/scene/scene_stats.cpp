@@ -61,14 +61,13 @@ std::string format_scene_stats(const SceneStats& s) {
     << "instances:   " << s.instances << "\n"
     << "spheres:     " << s.spheres << "\n"
     << "planes:      " << s.planes << "\n"
-    << "triangles:   " << s.triangles << " standalone, " << s.mesh_triangles << " in " << s.meshes
-    << " meshes (" << s.unique_mesh_triangles << " unique)\n"
+    << "triangles:   " << s.triangles << " standalone, " << s.mesh_triangles << " in " << s.meshes << " meshes ("
+    << s.unique_mesh_triangles << " unique)\n"
     << "materials:   " << s.materials << "\n"
     << "textures:    " << s.textures << "\n"
     << "lights:      " << s.lights << "\n"
     << "cameras:     " << s.cameras << "\n";
-  if (s.bounds.empty())
-    o << "bounds:      empty\n";
+  if (s.bounds.empty()) o << "bounds:      empty\n";
   else
     o << "bounds:      (" << s.bounds.lo.x << ", " << s.bounds.lo.y << ", " << s.bounds.lo.z << ") - (" << s.bounds.hi.x
       << ", " << s.bounds.hi.y << ", " << s.bounds.hi.z << ")" << (s.planes ? " (planes excluded)" : "") << "\n";

@@ -11,10 +11,10 @@ namespace rayform {
 struct SceneStats {
   size_t nodes = 0, instances = 0;  // instances: shape nodes after flattening
   size_t spheres = 0, planes = 0, triangles = 0, meshes = 0;
-  size_t mesh_triangles = 0;        // over all instances (a mesh instanced twice counts twice)
-  size_t unique_mesh_triangles = 0; // over the meshes themselves
+  size_t mesh_triangles = 0;         // over all instances (a mesh instanced twice counts twice)
+  size_t unique_mesh_triangles = 0;  // over the meshes themselves
   size_t materials = 0, textures = 0, lights = 0, cameras = 0;
-  Bounds3 bounds;                   // world bounds of the bounded shapes (planes excluded)
+  Bounds3 bounds;  // world bounds of the bounded shapes (planes excluded)
 };
 
 // Throws rayform::Error when the node graph is invalid (cycle, bad index).

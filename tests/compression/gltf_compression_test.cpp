@@ -151,7 +151,8 @@ TEST(GltfCompressionMeshopt, AttributesRoundTripExactly) {
 template <class T>
 std::vector<T> rotated_to_smallest(std::vector<T> t) {
   for (size_t i = 0; i + 2 < t.size(); i += 3)
-    while (t[i] > t[i + 1] || t[i] > t[i + 2]) std::rotate(t.begin() + long(i), t.begin() + long(i) + 1, t.begin() + long(i) + 3);
+    while (t[i] > t[i + 1] || t[i] > t[i + 2])
+      std::rotate(t.begin() + long(i), t.begin() + long(i) + 1, t.begin() + long(i) + 3);
   return t;
 }
 
@@ -260,8 +261,8 @@ TEST(GltfCompressionMeshopt, QuaternionFilterDecodesRotations) {
 }
 
 TEST(GltfCompressionMeshopt, ExponentialFilterDecodesFloats) {
-  const std::vector<float> v = {0.f,    1.f,     -1.f,     0.001f,  12345.678f, -0.5f, 3.14159265f, 1e-6f, -2e5f,
-                                0.f,    0.f,     0.f,      7.25f,   -7.25f,     1e4f,  0.0625f,     -3.f,  100.f};
+  const std::vector<float> v = {0.f, 1.f, -1.f, 0.001f, 12345.678f, -0.5f, 3.14159265f, 1e-6f, -2e5f,
+                                0.f, 0.f, 0.f,  7.25f,  -7.25f,     1e4f,  0.0625f,     -3.f,  100.f};
   struct Case {
     size_t stride;  // one exponent per stride / 4 floats
     int bits;       // mantissa bits, sign included
@@ -331,8 +332,9 @@ TEST(GltfCompressionMeshopt, RefusesAbsurdSizesBeforeAllocating) {
                          {"truncated", "at least"}));
   EXPECT_TRUE(fails_with([&] { decode(s, 3000000, 4, MeshoptMode::triangles); }, kWhere, {"truncated"}));
   EXPECT_TRUE(fails_with([&] { decode(s, 3000000, 2, MeshoptMode::indices); }, kWhere, {"truncated"}));
-  EXPECT_TRUE(fails_with([&] { decode_meshopt(nullptr, 0, 1, 4, MeshoptMode::attributes, MeshoptFilter::none, kWhere); },
-                         kWhere, {"truncated"}));
+  EXPECT_TRUE(
+      fails_with([&] { decode_meshopt(nullptr, 0, 1, 4, MeshoptMode::attributes, MeshoptFilter::none, kWhere); },
+                 kWhere, {"truncated"}));
 }
 
 // Streams of every mode, with their layouts, for the corruption tests.
@@ -349,7 +351,8 @@ std::vector<Stream> sample_streams() {
   const std::vector<float> n = unit_vectors_xyzw();
   std::vector<uint8_t> oct(n.size() / 4 * 8);
   meshopt_encodeFilterOct(oct.data(), n.size() / 4, 8, 12, n.data());
-  s.push_back({encode_vertices(oct, n.size() / 4, 8), n.size() / 4, 8, MeshoptMode::attributes, MeshoptFilter::octahedral});
+  s.push_back(
+      {encode_vertices(oct, n.size() / 4, 8), n.size() / 4, 8, MeshoptMode::attributes, MeshoptFilter::octahedral});
   const std::vector<uint32_t> tris = grid_triangles(6, 4);
   s.push_back({encode_triangles(tris, 35), tris.size(), 4, MeshoptMode::triangles, MeshoptFilter::none});
   const std::vector<uint32_t> seq = {3, 9, 1000, 2, 7, 7, 65535, 0, 12, 13};
@@ -429,12 +432,12 @@ struct Corner {
 };
 using Face = std::array<Corner, 3>;
 
-constexpr int kGrid = 4;                 // quads per side: (kGrid + 1)^2 distinct vertices
-constexpr uint32_t kPositionId = 4;      // Draco unique ids, deliberately not the attribute indices 0, 1, 2
+constexpr int kGrid = 4;             // quads per side: (kGrid + 1)^2 distinct vertices
+constexpr uint32_t kPositionId = 4;  // Draco unique ids, deliberately not the attribute indices 0, 1, 2
 constexpr uint32_t kUvId = 7;
 constexpr uint32_t kNormalId = 1;
 constexpr uint32_t kColorId = 9;
-constexpr int kPositionBits = 14;        // quantisation, when asked for
+constexpr int kPositionBits = 14;  // quantisation, when asked for
 constexpr int kUvBits = 12;
 constexpr int kNormalBits = 10;
 
@@ -540,8 +543,8 @@ void expect_saddle(const std::vector<uint8_t>& stream, float tol_p, float tol_uv
         for (int k = 0; k < 3 && all; ++k) {
           const uint32_t v = m.indices[3 * d + (k + r) % 3];
           const Corner& c = faces[f][k];
-          all = near(c.p, &m.attributes[0].values[3 * v], tol_p) && near(c.uv, &m.attributes[1].values[2 * v], tol_uv) &&
-                near(c.n, &m.attributes[2].values[3 * v], tol_n);
+          all = near(c.p, &m.attributes[0].values[3 * v], tol_p) &&
+                near(c.uv, &m.attributes[1].values[2 * v], tol_uv) && near(c.n, &m.attributes[2].values[3 * v], tol_n);
         }
         if (all) found = used[d] = true;
       }
@@ -644,7 +647,8 @@ TEST(GltfCompressionDraco, ForeignBytesAreAnError) {
   EXPECT_TRUE(fails_with([&] { decode_draco(zeros, {0}); }, kDracoWhere, says));
   EXPECT_TRUE(fails_with([&] { rayform::decode_draco(nullptr, 0, {0}, kDracoWhere); }, kDracoWhere, says));
   // A meshopt stream is not a Draco one.
-  EXPECT_TRUE(fails_with([&] { decode_draco(encode_vertices(vertex_bytes(30, 8, 4), 30, 8), {0}); }, kDracoWhere, says));
+  EXPECT_TRUE(
+      fails_with([&] { decode_draco(encode_vertices(vertex_bytes(30, 8, 4), 30, 8), {0}); }, kDracoWhere, says));
 }
 
 TEST(GltfCompressionDraco, EveryTruncationIsAnError) {
@@ -653,7 +657,11 @@ TEST(GltfCompressionDraco, EveryTruncationIsAnError) {
     SCOPED_TRACE("method " + std::to_string(method) + ", " + std::to_string(s.size()) + " bytes");
     for (size_t n = 0; n < s.size(); ++n) {
       const std::vector<uint8_t> prefix(s.begin(), s.begin() + long(n));
-      EXPECT_TRUE(fails_with([&] { decode_draco(prefix, {int(kPositionId), int(kNormalId)}); }, kDracoWhere))
+      EXPECT_TRUE(fails_with(
+          [&] {
+            decode_draco(prefix, {int(kPositionId), int(kNormalId)});
+          },
+          kDracoWhere))
           << n << " bytes";
     }
   }

@@ -77,11 +77,12 @@ TEST(AssetRender, DuckObjAndGltfShadeAlikeUnderTheSameCameraAndLight) {
   }
   const double n = double(obj.depth.size());
   const double colour = percent_over(obj.color, gltf.color, 4), albedo = percent_over(obj.albedo, gltf.albedo, 4);
-  std::printf("duck obj vs gltf, 200x200, %zu duck pixels: colour %.3f%%, albedo %.3f%% over 4/255; "
-              "depth %.3f%% over 1e-3; normals %.3f%% over 0.8 degrees\n",
-              hits, colour, albedo, 100.0 * double(depth_over) / n, 100.0 * double(normal_over) / n);
+  std::printf(
+      "duck obj vs gltf, 200x200, %zu duck pixels: colour %.3f%%, albedo %.3f%% over 4/255; "
+      "depth %.3f%% over 1e-3; normals %.3f%% over 0.8 degrees\n",
+      hits, colour, albedo, 100.0 * double(depth_over) / n, 100.0 * double(normal_over) / n);
   EXPECT_GT(hits, 5000u);  // the duck fills a good part of the picture
-  double red = 0.0;          // and is lit: a yellow duck, not a black one
+  double red = 0.0;        // and is lit: a yellow duck, not a black one
   for (size_t i = 0; i < obj.depth.size(); ++i)
     if (std::isfinite(obj.depth[i])) red += obj.color.pixels[3 * i];
   EXPECT_GT(red / double(hits), 0.3);

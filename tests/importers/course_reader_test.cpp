@@ -45,7 +45,12 @@ std::string where(const std::string& text, const std::string& needle, int occurr
   }
   int line = 1, col = 1;
   for (size_t i = 0; i < pos; ++i) {
-    if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
   }
   return path + ":" + std::to_string(line) + ":" + std::to_string(col);
 }
@@ -54,19 +59,24 @@ std::string where(const std::string& text, const std::string& needle, int occurr
 std::string end_of(const std::string& text, const std::string& path = "t.txt") {
   int line = 1, col = 1;
   for (char c : text) {
-    if (c == '\n') { ++line; col = 1; } else { ++col; }
+    if (c == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
   }
   return path + ":" + std::to_string(line) + ":" + std::to_string(col);
 }
 
 // The error must start with the position and contain every expected fragment.
-#define EXPECT_PARSE_ERROR(text, position, ...)                                                  \
-  do {                                                                                           \
-    std::string msg_ = error_of(text);                                                           \
-    ASSERT_FALSE(msg_.empty()) << "no error for:\n" << (text);                                   \
-    EXPECT_EQ(msg_.rfind((position) + ": ", 0), 0u) << "error at the wrong place: " << msg_      \
-                                                    << "\nexpected it at " << (position);        \
-    for (const char* frag_ : {__VA_ARGS__})                                                      \
+#define EXPECT_PARSE_ERROR(text, position, ...)                                                     \
+  do {                                                                                              \
+    std::string msg_ = error_of(text);                                                              \
+    ASSERT_FALSE(msg_.empty()) << "no error for:\n" << (text);                                      \
+    EXPECT_EQ(msg_.rfind((position) + ": ", 0), 0u)                                                 \
+        << "error at the wrong place: " << msg_ << "\nexpected it at " << (position);               \
+    for (const char* frag_ : {__VA_ARGS__})                                                         \
       EXPECT_NE(msg_.find(frag_), std::string::npos) << "'" << frag_ << "' missing from: " << msg_; \
   } while (0)
 
@@ -99,7 +109,8 @@ constexpr float kTol = 1e-6f;
 
 void expect_point(const mat4& m, vec3 p, vec3 want, const std::string& what) {
   vec3 got = transform_point(m, p);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], want[k], kTol * std::max(1.f, std::abs(want[k]))) << what << " [" << k << "]";
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(got[k], want[k], kTol * std::max(1.f, std::abs(want[k]))) << what << " [" << k << "]";
 }
 
 mat4 single_transform(const std::string& xforms) {
@@ -150,13 +161,12 @@ TEST(CourseReader, KeysInAnyOrderAndALaterBlockOverrides) {
 }
 
 TEST(CourseReader, CommentsAndNumbersTouchingBraces) {
-  CourseScene cs = parse(
-      "# a scene\n" + kCamera +
-      "Materials { numMaterials 1 Material { diffuseColor 1 0 0 shininess 20} }  # trailing\n"
-      "Group { numObjects 1\n"
-      "  Sphere { center 1 2 3 # radius 9 is commented out\n"
-      "    radius 2}# no space before the comment\n"
-      "}");
+  CourseScene cs = parse("# a scene\n" + kCamera +
+                         "Materials { numMaterials 1 Material { diffuseColor 1 0 0 shininess 20} }  # trailing\n"
+                         "Group { numObjects 1\n"
+                         "  Sphere { center 1 2 3 # radius 9 is commented out\n"
+                         "    radius 2}# no space before the comment\n"
+                         "}");
   ASSERT_EQ(cs.scene.spheres.size(), 1u);
   EXPECT_EQ(cs.scene.spheres[0].radius, 2.f);
   EXPECT_EQ(cs.scene.materials.at(0).shininess, 20.f);
@@ -205,13 +215,16 @@ TEST(CourseReader, DialectDetection) {
   auto dialect = [](const std::string& body) { return parse(kCamera + body + "Group { numObjects 0 }\n").dialect; };
   EXPECT_EQ(dialect(""), CourseDialect::v2012);
   EXPECT_EQ(dialect("# falloff and bump only in a comment\n"), CourseDialect::v2012);
-  EXPECT_EQ(dialect("Lights { numLights 1 PointLight { position 0 0 0 color 1 1 1 falloff 1 } }\n"), CourseDialect::v2019);
+  EXPECT_EQ(dialect("Lights { numLights 1 PointLight { position 0 0 0 color 1 1 1 falloff 1 } }\n"),
+            CourseDialect::v2019);
   auto dir = test::temp_dir("reader_dialect");
   write_picture(dir / "b.bmp");
   fs::create_directories(dir / "sky");
-  for (const char* face : {"right", "left", "up", "down", "front", "back"}) write_picture(dir / "sky" / (std::string(face) + ".png"));
+  for (const char* face : {"right", "left", "up", "down", "front", "back"})
+    write_picture(dir / "sky" / (std::string(face) + ".png"));
   std::string path = (dir / "s.txt").string();
-  CourseScene bump = parse(kCamera + "Materials { numMaterials 1 Material { bump b.bmp } }\nGroup { numObjects 0 }\n", {}, path);
+  CourseScene bump =
+      parse(kCamera + "Materials { numMaterials 1 Material { bump b.bmp } }\nGroup { numObjects 0 }\n", {}, path);
   EXPECT_EQ(bump.dialect, CourseDialect::v2019);
   EXPECT_EQ(bump.scene.materials.at(0).bump_texture, 0);
   CourseScene cube = parse(kCamera + "Background { cubeMap sky }\nGroup { numObjects 0 }\n", {}, path);
@@ -324,8 +337,7 @@ TEST(CourseReader, NestingDepthIsLimited) {
   expect_point(m[0], vec3(0.f), vec3(float(max_node_depth - 2), 0.f, 0.f), "translations summed over every level");
 
   std::string deeper = nested_transforms(max_node_depth - 1);
-  EXPECT_PARSE_ERROR(deeper, where(deeper, "Transform", max_node_depth - 1), "nested too deeply",
-                     "at most 256 levels");
+  EXPECT_PARSE_ERROR(deeper, where(deeper, "Transform", max_node_depth - 1), "nested too deeply", "at most 256 levels");
   std::string hostile = nested_transforms(100000);
   EXPECT_PARSE_ERROR(hostile, where(hostile, "Transform", max_node_depth - 1), "nested too deeply");
 }
@@ -346,7 +358,8 @@ TEST(CourseReader, MaterialIndexStaysInForceAcrossGroups) {
 }
 
 TEST(CourseReader, SphereAndPlane) {
-  CourseScene cs = parse(kCamera + "Group { numObjects 2 Sphere { center 1 -2 3.5 radius 0.75 } Plane { normal 0 2 0 offset -4 } }\n");
+  CourseScene cs = parse(
+      kCamera + "Group { numObjects 2 Sphere { center 1 -2 3.5 radius 0.75 } Plane { normal 0 2 0 offset -4 } }\n");
   ASSERT_EQ(cs.scene.spheres.size(), 1u);
   EXPECT_EQ(cs.scene.spheres[0].center, vec3(1, -2, 3.5f));
   EXPECT_EQ(cs.scene.spheres[0].radius, 0.75f);
@@ -380,7 +393,8 @@ TEST(CourseReader, AxisRotationsAreRightHandedDegrees) {
   expect_point(single_transform("XRotate 90"), vec3(0, 1, 0), vec3(0, 0, 1), "XRotate y->z");
   expect_point(single_transform("YRotate 90"), vec3(0, 0, 1), vec3(1, 0, 0), "YRotate z->x");
   expect_point(single_transform("ZRotate 90"), vec3(1, 0, 0), vec3(0, 1, 0), "ZRotate x->y");
-  expect_point(single_transform("ZRotate 30"), vec3(1, 0, 0), vec3(std::cos(pi / 6), std::sin(pi / 6), 0), "ZRotate 30");
+  expect_point(single_transform("ZRotate 30"), vec3(1, 0, 0), vec3(std::cos(pi / 6), std::sin(pi / 6), 0),
+               "ZRotate 30");
   expect_point(single_transform("XRotate -90"), vec3(0, 1, 0), vec3(0, 0, -1), "XRotate -90");
 }
 
@@ -413,10 +427,13 @@ TEST(CourseReader, TransformCompositionOrder) {
   expect_point(single_transform("ZRotate 90 Translate 1 0 0"), vec3(1, 0, 0), vec3(0, 2, 0), "Rz T");
   // Matrix4f left-multiplies: M := A M.
   const char* scale2 = "Matrix4f { 2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1 }";
-  expect_point(single_transform(std::string("Translate 1 0 0 ") + scale2), vec3(0.f), vec3(2, 0, 0), "T then Matrix4f: A T");
+  expect_point(single_transform(std::string("Translate 1 0 0 ") + scale2), vec3(0.f), vec3(2, 0, 0),
+               "T then Matrix4f: A T");
   const char* move5 = "Matrix4f { 1 0 0 0  0 1 0 0  0 0 1 0  5 0 0 1 }";
-  expect_point(single_transform(std::string(move5) + " Scale 2 2 2"), vec3(1, 0, 0), vec3(7, 0, 0), "Matrix4f then S: A S");
-  expect_point(single_transform(std::string("Scale 2 2 2 ") + move5), vec3(1, 0, 0), vec3(7, 0, 0), "S then Matrix4f: A S");
+  expect_point(single_transform(std::string(move5) + " Scale 2 2 2"), vec3(1, 0, 0), vec3(7, 0, 0),
+               "Matrix4f then S: A S");
+  expect_point(single_transform(std::string("Scale 2 2 2 ") + move5), vec3(1, 0, 0), vec3(7, 0, 0),
+               "S then Matrix4f: A S");
   // scene04's chain, against glm.
   mat4 want = glm::translate(mat4(1.f), vec3(4, 3, 1));
   want = glm::rotate(want, radians(10.f), vec3(1, 0, 0));
@@ -482,7 +499,8 @@ TEST(CourseReader, TriangleMeshNormalRulesOfBothDialects) {
     // The shared corner: area-weighted (2012) or unit (2019) face normals summed.
     std::vector<vec3> n0 = normals_at(m, vec3(0.f));
     ASSERT_FALSE(n0.empty());
-    for (vec3 n : n0) expect_unit_near(n, d == CourseDialect::v2012 ? vec3(1, 0, 16) : vec3(1, 0, 1), name + " shared vertex");
+    for (vec3 n : n0)
+      expect_unit_near(n, d == CourseDialect::v2012 ? vec3(1, 0, 16) : vec3(1, 0, 1), name + " shared vertex");
     for (vec3 n : normals_at(m, vec3(4, 0, 0))) expect_unit_near(n, vec3(0, 0, 1), name + " face A only (vn ignored)");
     for (vec3 n : normals_at(m, vec3(0, 0, 1))) expect_unit_near(n, vec3(1, 0, 0), name + " face B only (vn ignored)");
     for (vec3 n : normals_at(m, vec3(11, 1, 0))) expect_unit_near(n, vec3(0, 0, 1), name + " quad corner (last line)");
@@ -505,8 +523,9 @@ TEST(CourseReader, RelativePathsResolveBesideTheSceneThenTheWorkingDirectory) {
   std::string path = (scene_dir / "s.txt").string();
   std::string err;
   try {
-    CourseScene cs = parse(kCamera + "Group { numObjects 2 TriangleMesh { obj_file beside.obj } TriangleMesh { obj_file incwd.obj } }\n",
-                           {}, path);
+    CourseScene cs = parse(
+        kCamera + "Group { numObjects 2 TriangleMesh { obj_file beside.obj } TriangleMesh { obj_file incwd.obj } }\n",
+        {}, path);
     EXPECT_EQ(cs.scene.meshes.size(), 2u);
   } catch (const Error& e) {
     err = e.what();
@@ -624,13 +643,15 @@ TEST(CourseReaderErrors, WrongCounts) {
 
 TEST(CourseReaderErrors, MaterialIndexOutOfRange) {
   // k must be < numMaterials (the reference's check is off by one).
-  std::string t = kCamera + "Materials { numMaterials 2 Material { } Material { } }\n"
-                            "Group { numObjects 1\n  MaterialIndex 2\n  Sphere { radius 1 } }\n";
+  std::string t = kCamera +
+                  "Materials { numMaterials 2 Material { } Material { } }\n"
+                  "Group { numObjects 1\n  MaterialIndex 2\n  Sphere { radius 1 } }\n";
   EXPECT_PARSE_ERROR(t, where(t, "2\n  Sphere"), "MaterialIndex 2 is out of range", "2 materials");
   std::string none = kCamera + "Group { numObjects 1 MaterialIndex 0 Sphere { radius 1 } }\n";
   EXPECT_PARSE_ERROR(none, where(none, "0 Sphere"), "MaterialIndex 0 is out of range", "0 materials");
-  std::string ok = kCamera + "Materials { numMaterials 2 Material { } Material { } }\n"
-                             "Group { numObjects 1 MaterialIndex 1 Sphere { radius 1 } }\n";
+  std::string ok = kCamera +
+                   "Materials { numMaterials 2 Material { } Material { } }\n"
+                   "Group { numObjects 1 MaterialIndex 1 Sphere { radius 1 } }\n";
   EXPECT_EQ(error_of(ok), "");
   std::string neg = kCamera + "Group { numObjects 1 MaterialIndex -1 Sphere { radius 1 } }\n";
   EXPECT_PARSE_ERROR(neg, where(neg, "-1 Sphere"), "expected a count");
@@ -683,7 +704,9 @@ TEST(CourseReaderErrors, NonNumericNumbers) {
   EXPECT_PARSE_ERROR(b, where(b, "1.2.3"), "expected a number, found '1.2.3'");
   std::string c = kCamera + "Group { numObjects 1\n  Sphere { center 0 0 radius 1 } }\n";
   EXPECT_PARSE_ERROR(c, where(c, "radius"), "expected a number, found 'radius'");
-  std::string d = kCamera + "Group { numObjects 1 Transform {\n  Matrix4f { 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 } Sphere { radius 1 } } }\n";
+  std::string d =
+      kCamera +
+      "Group { numObjects 1 Transform {\n  Matrix4f { 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 } Sphere { radius 1 } } }\n";
   EXPECT_PARSE_ERROR(d, where(d, "} Sphere"), "expected a number, found '}'");
   std::string e = "PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30deg }\n";
   EXPECT_PARSE_ERROR(e, where(e, "30deg"), "expected a number, found '30deg'");

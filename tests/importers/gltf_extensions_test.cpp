@@ -142,9 +142,8 @@ TEST_F(GltfExtensions, QuantizedAttributesOfEveryComponentTypeAreDequantised) {
     bool normalized;
     float one;  // the stored integer that means 1 in the file's units
   };
-  const Case cases[] = {{kByte, false, 1.f},   {kUByte, false, 1.f},   {kShort, false, 1.f},  {kUShort, false, 1.f},
-                        {kByte, true, 127.f},  {kUByte, true, 255.f},  {kShort, true, 32767.f},
-                        {kUShort, true, 65535.f}};
+  const Case cases[] = {{kByte, false, 1.f},  {kUByte, false, 1.f},  {kShort, false, 1.f},    {kUShort, false, 1.f},
+                        {kByte, true, 127.f}, {kUByte, true, 255.f}, {kShort, true, 32767.f}, {kUShort, true, 65535.f}};
   for (const Case& c : cases) {
     SCOPED_TRACE("componentType " + std::to_string(c.component_type) + (c.normalized ? " normalized" : ""));
     GltfBuilder b;
@@ -229,11 +228,17 @@ GltfBuilder meshopt_file(std::vector<float> positions, std::vector<uint32_t> ind
   b.view(ibuf.data(), ibuf.size());
   auto compressed_view = [&](int of, size_t count, size_t stride, const char* mode) {
     const json& raw = b.j["bufferViews"][size_t(of)];
-    json v = {{"buffer", 1}, {"byteOffset", 0}, {"byteLength", count * stride},
+    json v = {{"buffer", 1},
+              {"byteOffset", 0},
+              {"byteLength", count * stride},
               {"extensions",
                {{"EXT_meshopt_compression",
-                 {{"buffer", 0}, {"byteOffset", raw["byteOffset"]}, {"byteLength", raw["byteLength"]},
-                  {"byteStride", stride}, {"count", count}, {"mode", mode}}}}}};
+                 {{"buffer", 0},
+                  {"byteOffset", raw["byteOffset"]},
+                  {"byteLength", raw["byteLength"]},
+                  {"byteStride", stride},
+                  {"count", count},
+                  {"mode", mode}}}}}};
     if (std::string(mode) == "ATTRIBUTES") v["byteStride"] = stride;
     b.j["bufferViews"].push_back(v);
     return int(b.j["bufferViews"].size()) - 1;
@@ -241,7 +246,8 @@ GltfBuilder meshopt_file(std::vector<float> positions, std::vector<uint32_t> ind
   const int pv = compressed_view(0, vertices, 12, "ATTRIBUTES");
   const int iv = compressed_view(1, indices.size(), 4, "TRIANGLES");
   b.j["accessors"].push_back({{"bufferView", pv}, {"componentType", kFloat}, {"count", vertices}, {"type", "VEC3"}});
-  b.j["accessors"].push_back({{"bufferView", iv}, {"componentType", kUInt}, {"count", indices.size()}, {"type", "SCALAR"}});
+  b.j["accessors"].push_back(
+      {{"bufferView", iv}, {"componentType", kUInt}, {"count", indices.size()}, {"type", "SCALAR"}});
   b.j["buffers"].push_back({{"byteLength", vertices * 12 + indices.size() * 4},
                             {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
   b.one_mesh({{"POSITION", 0}}, json::object(), 1);
@@ -258,7 +264,8 @@ TEST_F(GltfExtensions, MeshoptCompressedViewsWithADatalessFallbackBuffer) {
   ASSERT_EQ(s.meshes.size(), 1u);
   const Mesh& m = s.meshes[0];
   ASSERT_EQ(m.positions.size(), 5u);
-  for (size_t i = 0; i < 5; ++i) EXPECT_EQ(m.positions[i], vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]));
+  for (size_t i = 0; i < 5; ++i)
+    EXPECT_EQ(m.positions[i], vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]));
   // The index codec may rotate a triangle's corners; the triangles are the same.
   ASSERT_EQ(m.indices.size(), indices.size());
   for (size_t t = 0; t < indices.size() / 3; ++t) {
@@ -287,7 +294,8 @@ TEST_F(GltfExtensions, CorruptMeshoptStreamsAreErrorsNamingTheView) {
       << error(outside);
   GltfBuilder mode = b;
   mode.j["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["mode"] = "SHUFFLE";
-  EXPECT_NE(error(mode).find("bufferViews[2].extensions.EXT_meshopt_compression.mode"), std::string::npos) << error(mode);
+  EXPECT_NE(error(mode).find("bufferViews[2].extensions.EXT_meshopt_compression.mode"), std::string::npos)
+      << error(mode);
   GltfBuilder longer = b;  // the view claims more bytes than the stream decodes to
   longer.j["bufferViews"][2]["byteLength"] = 1000;
   EXPECT_NE(error(longer).find("bufferViews[2].byteLength: 1000 is more than the 36 bytes"), std::string::npos)
@@ -401,22 +409,23 @@ TEST_F(GltfExtensions, SkinnedMeshesArePosedByTheirJoints) {
   const int joints = b.accessor(std::vector<uint8_t>{0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0}, kUByte, "VEC4", 3);
   const int weights = b.accessor(std::vector<float>{1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0}, kFloat, "VEC4", 3);
   // Inverse bind matrices: identity for joint 0, T(0, 0, -1) for joint 1 (bound at z = 1).
-  const int ibm = b.accessor(std::vector<float>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+  const int ibm = b.accessor(std::vector<float>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0,  1,  //
                                                 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1},
                              kFloat, "MAT4", 2);
-  b.one_mesh({{"POSITION", pos}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}, {{"skin", 0}, {"translation", {100.0, 0.0, 0.0}}});
-  b.j["nodes"].push_back({{"translation", {0.0, 0.0, 10.0}}});  // joint 0 (node 1)
+  b.one_mesh({{"POSITION", pos}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}},
+             {{"skin", 0}, {"translation", {100.0, 0.0, 0.0}}});
+  b.j["nodes"].push_back({{"translation", {0.0, 0.0, 10.0}}});                    // joint 0 (node 1)
   b.j["nodes"].push_back({{"translation", {0.0, 0.0, 1.0}}, {"children", {3}}});  // node 2, parent of joint 1
-  b.j["nodes"].push_back({{"translation", {0.0, 2.0, 0.0}}});  // joint 1 (node 3): world T(0, 2, 1)
+  b.j["nodes"].push_back({{"translation", {0.0, 2.0, 0.0}}});                     // joint 1 (node 3): world T(0, 2, 1)
   b.j["skins"] = json::array({{{"joints", {1, 3}}, {"inverseBindMatrices", ibm}}});
   b.j["scenes"][0]["nodes"] = {0, 1, 2};
   Scene s = load(b);
   std::vector<vec3> p = world_positions(s);
   ASSERT_EQ(p.size(), 3u);
   // The skinned node's own translation (100, 0, 0) is ignored.
-  EXPECT_EQ(p[0], vec3(0, 0, 10));                     // joint 0: T(0,0,10)
-  EXPECT_EQ(p[1], vec3(1, 1, 5));                      // half T(0,0,10), half T(0,2,1) T(0,0,-1) = T(0,2,0)
-  EXPECT_EQ(p[2], vec3(0, 3, 0));                      // joint 1: T(0,2,0)
+  EXPECT_EQ(p[0], vec3(0, 0, 10));  // joint 0: T(0,0,10)
+  EXPECT_EQ(p[1], vec3(1, 1, 5));   // half T(0,0,10), half T(0,2,1) T(0,0,-1) = T(0,2,0)
+  EXPECT_EQ(p[2], vec3(0, 3, 0));   // joint 1: T(0,2,0)
   GltfBuilder bad = b;
   bad.j["skins"][0]["joints"] = {1};  // joint index 1 now out of range
   EXPECT_NE(error(bad).find("attributes.JOINTS_0: vertex 1 names joint 1 but the skin has 1"), std::string::npos)
@@ -465,7 +474,8 @@ TEST_F(GltfExtensions, WebpTexturesDecodeThroughLibwebp) {
 TEST_F(GltfExtensions, BrokenWebpFallsBackToTheCoreSourceOrIsAnError) {
   std::vector<uint8_t> webp = webp_2x2();
   webp.resize(webp.size() / 2);  // truncated
-  const std::string png = "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
   GltfBuilder b = textured({{"source", 1}, {"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}, json::array());
   b.j["images"] = json::array({{{"bufferView", b.view(webp.data(), webp.size())}, {"mimeType", "image/webp"}},
                                {{"uri", "data:image/png;base64," + png}}});
@@ -483,7 +493,8 @@ TEST_F(GltfExtensions, BrokenWebpFallsBackToTheCoreSourceOrIsAnError) {
 
 TEST_F(GltfExtensions, BasisuUsesTheFallbackSourceOrIsAnErrorNamingTheTexture) {
   const std::vector<uint8_t> ktx2 = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n', 0, 0, 0, 0};
-  const std::string png = "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
   GltfBuilder b = textured({{"source", 1}, {"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}}, json::array());
   b.j["images"] = json::array({{{"bufferView", b.view(ktx2.data(), ktx2.size())}, {"mimeType", "image/ktx2"}},
                                {{"uri", "data:image/png;base64," + png}}});
@@ -510,7 +521,8 @@ TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
       {{"pbrMetallicRoughness", pbr}, {"extensions", {{"KHR_materials_unlit", json::object()}}}},
       {{"pbrMetallicRoughness", pbr}, {"extensions", {{"KHR_materials_ior", {{"ior", 3.0}}}}}},
       {{"pbrMetallicRoughness", pbr},
-       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", 1.3}}}}}},
+       {"extensions",
+        {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", 1.3}}}}}},
       {{"extensions",
         {{"KHR_materials_pbrSpecularGlossiness",
           {{"diffuseFactor", {0.2, 0.4, 0.6, 1.0}}, {"specularFactor", {0.1, 0.1, 0.1}}, {"glossinessFactor", 0.5}}}}}},

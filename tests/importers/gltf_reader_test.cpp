@@ -63,7 +63,8 @@ std::string base64(const std::vector<uint8_t>& b) {
 std::string data_uri(const Bin& b) { return "data:application/octet-stream;base64," + base64(b.bytes); }
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+    s.replace(at, from.size(), to);
   return s;
 }
 
@@ -110,7 +111,8 @@ class GltfFiles : public ::testing::Test {
     return (dir_ / name).string();
   }
   std::string write_bytes(const std::string& name, const std::vector<uint8_t>& b) {
-    std::ofstream(dir_ / name, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+    std::ofstream(dir_ / name, std::ios::binary)
+        .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
     return (dir_ / name).string();
   }
   Scene load(const std::string& name, const std::string& json, std::vector<std::string>* warnings = nullptr) {
@@ -273,8 +275,8 @@ TEST(GltfReader, BoxTexturedGltfGlbAndEmbeddedAreIdentical) {
   // sample model's REPEAT sampler.
   EXPECT_EQ(glb.textures[0].wrap_u, Texture::Wrap::repeat);
   EXPECT_EQ(embedded.textures[0].wrap_v, Texture::Wrap::repeat);
-  EXPECT_TRUE(embedded.textures[0].path.empty());      // data URI
-  EXPECT_FALSE(gltf.textures[0].path.empty());         // external file, kept for writers
+  EXPECT_TRUE(embedded.textures[0].path.empty());  // data URI
+  EXPECT_FALSE(gltf.textures[0].path.empty());     // external file, kept for writers
   EXPECT_TRUE(fs::is_regular_file(gltf.textures[0].path));
 }
 
@@ -314,8 +316,8 @@ TEST(GltfReader, TwoCylinderEngineInstancesAndCounts) {
   const Scene& s = l.scene;
   SceneStats st = scene_stats(s);
   // Counted from the file's JSON by walking its default scene (python).
-  EXPECT_EQ(s.meshes.size(), 34u);        // primitives of its 29 meshes
-  EXPECT_EQ(st.instances, 115u);          // primitive uses over the 82 nodes
+  EXPECT_EQ(s.meshes.size(), 34u);  // primitives of its 29 meshes
+  EXPECT_EQ(st.instances, 115u);    // primitive uses over the 82 nodes
   EXPECT_EQ(st.mesh_triangles, 121496u);
   EXPECT_EQ(st.unique_mesh_triangles, 75730u);
   EXPECT_EQ(s.materials.size(), 34u);
@@ -499,15 +501,16 @@ TEST_F(GltfFiles, ExternalBinAndImageAndGlbGiveTheSameScene) {
   EXPECT_EQ(t.wrap_v, Texture::Wrap::mirror);
   EXPECT_EQ(fs::path(t.path), dir_ / "tex 1.png");
   // Embedded: buffer and image as data URIs.
-  std::string embedded = replace_all(q.json(", \"material\": 0", tex), "@IMG@",
-                                     std::string("data:image/png;base64,") + png_2x2);
+  std::string embedded =
+      replace_all(q.json(", \"material\": 0", tex), "@IMG@", std::string("data:image/png;base64,") + png_2x2);
   Scene b = load("embedded.gltf", embedded);
   expect_same_scene_data(a, b);
   EXPECT_EQ(b.textures[0].wrap_v, Texture::Wrap::mirror);
   // GLB: buffer 0 is the BIN chunk (no uri), the image in a bufferView.
   Bin glb_bin = q.bin;
   size_t png_at = glb_bin.add(png);
-  std::string glb_json = replace_all(q.json(", \"material\": 0", tex), "\"uri\": \"" + data_uri(q.bin) + "\"", "\"x\": 0");
+  std::string glb_json =
+      replace_all(q.json(", \"material\": 0", tex), "\"uri\": \"" + data_uri(q.bin) + "\"", "\"x\": 0");
   glb_json = replace_all(glb_json, "\"images\": [{\"uri\": \"@IMG@\"}]",
                          "\"images\": [{\"bufferView\": 3, \"mimeType\": \"image/png\"}]");
   glb_json = replace_all(glb_json, "{\"buffer\": 0, \"byteOffset\": " + std::to_string(q.idx) + ", \"byteLength\": 12}",
@@ -545,9 +548,10 @@ TEST_F(GltfFiles, StripsFansAndIndexTypes) {
     if (ct == 5123) at = b.add(std::vector<uint16_t>(order.begin(), order.end()));
     if (ct == 5125) at = b.add(order);
     size_t len = order.size() * (ct == 5121 ? 1 : ct == 5123 ? 2 : 4);
-    std::string v = views + ", {\"buffer\": 0, \"byteOffset\": " + std::to_string(at) + ", \"byteLength\": " +
-                    std::to_string(len) + "}";
-    std::string acc = "{\"bufferView\": 1, \"componentType\": " + std::to_string(ct) + ", \"count\": 6, \"type\": \"SCALAR\"}";
+    std::string v = views + ", {\"buffer\": 0, \"byteOffset\": " + std::to_string(at) +
+                    ", \"byteLength\": " + std::to_string(len) + "}";
+    std::string acc =
+        "{\"bufferView\": 1, \"componentType\": " + std::to_string(ct) + ", \"count\": 6, \"type\": \"SCALAR\"}";
     Scene s = load("idx" + std::to_string(ct) + ".gltf", primitive_file(b, 6, 5, acc, v));
     // i=0 {5,4,3}; i=1 {4,3,3} dropped; i=2 {3,3,2} dropped; i=3 {3,1,2}.
     EXPECT_EQ(triangles_as_positions_x(s), (std::vector<uint32_t>{5, 4, 3, 3, 1, 2})) << ct;
@@ -653,11 +657,14 @@ TEST_F(GltfFiles, NormalizedIntegerUvsAndColours) {
 
 TEST_F(GltfFiles, NodeHierarchyTrsAndMatrix) {
   Quad q;
-  std::string j = q.json("", "", R"(, "children": [1, 2], "translation": [1, 2, 3], "rotation": [0, 0, 0.7071068, 0.7071068], "scale": [2, 2, 2])");
+  std::string j = q.json(
+      "", "",
+      R"(, "children": [1, 2], "translation": [1, 2, 3], "rotation": [0, 0, 0.7071068, 0.7071068], "scale": [2, 2, 2])");
   j = replace_all(j, R"("nodes": [{"mesh": 0 ,)", R"("nodes": [{"mesh": 0,)");
   // add nodes 1 (matrix, translate 10 on x) and 2 (empty)
-  j = replace_all(j, R"("scale": [2, 2, 2]}],)",
-                  R"("scale": [2, 2, 2]}, {"name": "child", "mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 10,0,0,1]}, {"name": "empty"}],)");
+  j = replace_all(
+      j, R"("scale": [2, 2, 2]}],)",
+      R"("scale": [2, 2, 2]}, {"name": "child", "mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 10,0,0,1]}, {"name": "empty"}],)");
   Scene s = load("tree.gltf", j);
   std::vector<std::pair<std::string, mat4>> shapes;
   for_each_shape_node(s, [&](const Node& n, const mat4& w) { shapes.emplace_back(n.name, w); });
@@ -674,7 +681,8 @@ TEST_F(GltfFiles, NodeHierarchyTrsAndMatrix) {
   EXPECT_NEAR(c.y, 22.f, 1e-4f);
   EXPECT_NEAR(c.z, 3.f, 1e-4f);
   bool found_empty = false;
-  for (const Node& n : s.nodes) found_empty |= n.name == "empty" && n.kind == Node::Kind::transform && n.children.empty();
+  for (const Node& n : s.nodes)
+    found_empty |= n.name == "empty" && n.kind == Node::Kind::transform && n.children.empty();
   EXPECT_TRUE(found_empty);
 }
 
@@ -708,12 +716,12 @@ TEST_F(GltfFiles, CamerasAndPunctualLights) {
   EXPECT_EQ(persp.up, vec3(0, 1, 0));
   const Camera& ortho = s.cameras[1];
   EXPECT_EQ(ortho.projection, Camera::Projection::orthographic);
-  EXPECT_FLOAT_EQ(ortho.ortho_height, 4.f);  // 2 * ymag
+  EXPECT_FLOAT_EQ(ortho.ortho_height, 4.f);     // 2 * ymag
   EXPECT_NEAR(ortho.direction.x, -1.f, 1e-6f);  // 90 degrees about y: -z turns to -x
   ASSERT_EQ(s.lights.size(), 3u);
   const Light& sun = s.lights[0];
   EXPECT_EQ(sun.kind, Light::Kind::directional);
-  EXPECT_EQ(sun.color, vec3(2, 1, 0.5f));  // colour x intensity
+  EXPECT_EQ(sun.color, vec3(2, 1, 0.5f));     // colour x intensity
   EXPECT_NEAR(sun.direction.y, -1.f, 1e-6f);  // -90 degrees about x: -z turns to -y
   EXPECT_EQ(sun.falloff, 0.f);
   const Light& point = s.lights[1];
@@ -732,7 +740,8 @@ TEST_F(GltfFiles, CamerasAndPunctualLights) {
 
 TEST_F(GltfFiles, MaterialConversion) {
   Quad q;
-  std::string top = R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_materials_clearcoat"],
+  std::string top =
+      R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_materials_clearcoat"],
     "materials": [{"name": "m", "doubleSided": true, "alphaMode": "MASK", "alphaCutoff": 0.3,
       "emissiveFactor": [0.1, 0.2, 0.3],
       "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}},
@@ -760,7 +769,7 @@ TEST_F(GltfFiles, MaterialConversion) {
   EXPECT_NEAR(m.shininess, 7.5f, 1e-5f);
   EXPECT_EQ(m.emission, vec3(0.2f, 0.4f, 0.6f));
   EXPECT_TRUE(m.double_sided);
-  EXPECT_TRUE(m.two_sided_lighting);  // the specification reverses back-face normals
+  EXPECT_TRUE(m.two_sided_lighting);                // the specification reverses back-face normals
   EXPECT_NEAR(m.alpha_cutoff, 0.3f / 0.5f, 1e-6f);  // factor alpha folded into the threshold
   EXPECT_TRUE(m.texture_modulates);
   ASSERT_EQ(m.diffuse_texture, 0);
@@ -813,8 +822,9 @@ TEST_F(GltfFiles, IndexOutOfRange) {
   j = replace_all(j, R"("meshes": [{"name": "quad", )", R"("meshes": [{"primitives": []}, {"name": "quad", )");
   j = replace_all(j, R"("nodes": [{"mesh": 0 }])", R"("nodes": [{"mesh": 1 }])");
   std::string e = error("badindex.gltf", j);
-  EXPECT_EQ(e, (dir_ / "badindex.gltf").string() +
-                   ": meshes[1].primitives[0].indices: index 40 (element 5) is out of range (the primitive has 4 vertices)");
+  EXPECT_EQ(
+      e, (dir_ / "badindex.gltf").string() +
+             ": meshes[1].primitives[0].indices: index 40 (element 5) is out of range (the primitive has 4 vertices)");
 }
 
 TEST_F(GltfFiles, AccessorPastTheEndOfItsBufferView) {
@@ -825,8 +835,9 @@ TEST_F(GltfFiles, AccessorPastTheEndOfItsBufferView) {
                    "from byte 0 run past the end of bufferViews[0] (48 bytes)"),
             std::string::npos)
       << e;
-  std::string offset = replace_all(q.json(), R"({"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"})",
-                                   R"({"bufferView": 1, "byteOffset": 4, "componentType": 5126, "count": 4, "type": "VEC2"})");
+  std::string offset =
+      replace_all(q.json(), R"({"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"})",
+                  R"({"bufferView": 1, "byteOffset": 4, "componentType": 5126, "count": 4, "type": "VEC2"})");
   EXPECT_NE(error("offset.gltf", offset).find("attributes.TEXCOORD_0 (accessors[1])"), std::string::npos);
 }
 
@@ -845,7 +856,8 @@ TEST_F(GltfFiles, MissingBinFile) {
   Quad q;
   std::string j = replace_all(q.json(), data_uri(q.bin), "missing.bin");
   std::string e = error("nobin.gltf", j);
-  EXPECT_EQ(e, (dir_ / "nobin.gltf").string() + ": buffers[0]: cannot find 'missing.bin' (looked in " + dir_.string() + ")");
+  EXPECT_EQ(
+      e, (dir_ / "nobin.gltf").string() + ": buffers[0]: cannot find 'missing.bin' (looked in " + dir_.string() + ")");
   // A .bin of the wrong size.
   std::ofstream(dir_ / "short.bin", std::ios::binary) << "0123";
   EXPECT_NE(error("shortbin.gltf", replace_all(q.json(), data_uri(q.bin), "short.bin"))
@@ -865,7 +877,8 @@ TEST_F(GltfFiles, RecursiveNodeGraph) {
   // No scene: all nodes are children of others.
   std::string noscene = replace_all(replace_all(self, R"("scene": 0,)", ""), R"("scenes": [{"nodes": [0]}],)", "");
   EXPECT_NE(error("noscene.gltf", noscene).find("recursive"), std::string::npos) << error("noscene.gltf", noscene);
-  std::string badchild = replace_all(q.json(), R"("nodes": [{"mesh": 0 }])", R"("nodes": [{"mesh": 0, "children": [7]}])");
+  std::string badchild =
+      replace_all(q.json(), R"("nodes": [{"mesh": 0 }])", R"("nodes": [{"mesh": 0, "children": [7]}])");
   EXPECT_NE(error("badchild.gltf", badchild).find("nodes[0].children[0]: node 7 does not exist (the file has 1 nodes)"),
             std::string::npos);
 }
@@ -876,7 +889,8 @@ TEST_F(GltfFiles, VeryDeepHierarchyIsRefused) {
   for (int i = 0; i < 5000; ++i) nodes += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
   nodes += "{\"mesh\": 0}]";
   std::string j = replace_all(q.json(), R"("nodes": [{"mesh": 0 }])", nodes);
-  EXPECT_NE(error("deep.gltf", j).find("nodes[253].children[0]: the node hierarchy is too deep (a scene holds at most 256 levels)"),
+  EXPECT_NE(error("deep.gltf", j)
+                .find("nodes[253].children[0]: the node hierarchy is too deep (a scene holds at most 256 levels)"),
             std::string::npos)
       << error("deep.gltf", j);
 }
@@ -906,7 +920,8 @@ TEST_F(GltfFiles, NonFinitePositions) {
   EXPECT_NE(error("inf.gltf", r.json()).find("vertex 3 is not finite"), std::string::npos);
   // Non-finite transforms too.
   Quad t;
-  std::string j = replace_all(t.json(), R"("nodes": [{"mesh": 0 }])", R"("nodes": [{"mesh": 0, "scale": [1, 1e999, 1]}])");
+  std::string j =
+      replace_all(t.json(), R"("nodes": [{"mesh": 0 }])", R"("nodes": [{"mesh": 0, "scale": [1, 1e999, 1]}])");
   std::string e = error("infscale.gltf", j);
   EXPECT_FALSE(e.empty());
 }
@@ -930,8 +945,9 @@ TEST_F(GltfFiles, WrongAccessorTypes) {
   EXPECT_NE(error("intuv.gltf", intuv).find("TEXCOORD_0 (accessors[1]): accessor is VEC2 of UNSIGNED_INT"),
             std::string::npos);
   std::string noacc = replace_all(q.json(), R"("POSITION": 0)", R"("POSITION": 9)");
-  EXPECT_NE(error("noacc.gltf", noacc).find("attributes.POSITION: accessor 9 does not exist (the file has 3 accessors)"),
-            std::string::npos);
+  EXPECT_NE(
+      error("noacc.gltf", noacc).find("attributes.POSITION: accessor 9 does not exist (the file has 3 accessors)"),
+      std::string::npos);
   std::string count = replace_all(q.json(), R"({"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"})",
                                   R"({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"})");
   EXPECT_NE(error("count.gltf", count).find("TEXCOORD_0: 3 elements, but POSITION has 4"), std::string::npos);
@@ -942,7 +958,8 @@ TEST_F(GltfFiles, WrongAccessorTypes) {
               se.find("byteStride") != std::string::npos)
       << se;
   std::string mode = q.json(", \"mode\": 9");
-  EXPECT_NE(error("mode.gltf", mode).find("meshes[0].primitives[0].mode: 9 is not a primitive mode"), std::string::npos);
+  EXPECT_NE(error("mode.gltf", mode).find("meshes[0].primitives[0].mode: 9 is not a primitive mode"),
+            std::string::npos);
   std::string mat = q.json(", \"material\": 3");
   EXPECT_NE(error("mat.gltf", mat).find("meshes[0].primitives[0].material: material 3 does not exist"),
             std::string::npos);
@@ -980,20 +997,23 @@ TEST_F(GltfFiles, BadSparseAccessors) {
 
 TEST_F(GltfFiles, UnsupportedRequiredExtension) {
   Quad q;
-  std::string j = q.json("", R"(, "extensionsUsed": ["EXT_lights_image_based"], "extensionsRequired": ["EXT_lights_image_based"])");
+  std::string j =
+      q.json("", R"(, "extensionsUsed": ["EXT_lights_image_based"], "extensionsRequired": ["EXT_lights_image_based"])");
   EXPECT_NE(error("ibl.gltf", j)
                 .find("extensionsRequired[0]: extension 'EXT_lights_image_based' is required by the file but not "
                       "supported"),
             std::string::npos)
       << error("ibl.gltf", j);
   // Required but supported: fine.
-  std::string ok = q.json("", R"(, "extensionsUsed": ["KHR_texture_transform"], "extensionsRequired": ["KHR_texture_transform"])");
+  std::string ok =
+      q.json("", R"(, "extensionsUsed": ["KHR_texture_transform"], "extensionsRequired": ["KHR_texture_transform"])");
   EXPECT_EQ(error("tt.gltf", ok), "");
 }
 
 TEST_F(GltfFiles, NotAGltfAtAll) {
-  EXPECT_EQ(error("text.gltf", "hello, world"),
-            (dir_ / "text.gltf").string() + ": not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
+  EXPECT_EQ(
+      error("text.gltf", "hello, world"),
+      (dir_ / "text.gltf").string() + ": not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
   EXPECT_NE(error("array.gltf", "[1, 2, 3]").find("not a glTF file"), std::string::npos);
   EXPECT_NE(error("broken.gltf", "{\"asset\": {\"version\": \"2.0\"").find("not a glTF file: invalid JSON"),
             std::string::npos)
@@ -1008,7 +1028,8 @@ TEST_F(GltfFiles, NotAGltfAtAll) {
   EXPECT_NE(error("png.glb", "\x89PNG\r\n\x1a\n....").find("not a glTF file"), std::string::npos);
   // Truncated and inconsistent GLB containers.
   Quad q;
-  std::vector<uint8_t> glb = make_glb(replace_all(q.json(), "\"uri\": \"" + data_uri(q.bin) + "\"", "\"x\": 0"), q.bin.bytes);
+  std::vector<uint8_t> glb =
+      make_glb(replace_all(q.json(), "\"uri\": \"" + data_uri(q.bin) + "\"", "\"x\": 0"), q.bin.bytes);
   EXPECT_EQ(error_of(write_bytes("good.glb", glb)), "");
   std::vector<uint8_t> cut(glb.begin(), glb.begin() + 30);
   EXPECT_NE(error_of(write_bytes("cut.glb", cut)).find("not a valid binary glTF (GLB)"), std::string::npos)
@@ -1037,9 +1058,9 @@ TEST_F(GltfFiles, MutatedFilesLoadOrFailCleanly) {
   std::vector<uint8_t> png;
   {
     // decode the 2x2 PNG once via a data-URI load
-    std::string j = q.json(", \"material\": 0",
-                           replace_all(top, R"({"bufferView": 3, "mimeType": "image/png"})",
-                                       std::string("{\"uri\": \"data:image/png;base64,") + png_2x2 + "\"}"));
+    std::string j =
+        q.json(", \"material\": 0", replace_all(top, R"({"bufferView": 3, "mimeType": "image/png"})",
+                                                std::string("{\"uri\": \"data:image/png;base64,") + png_2x2 + "\"}"));
     Scene s = load("seed.gltf", j);
     ASSERT_EQ(s.textures.size(), 1u);
   }
@@ -1050,8 +1071,12 @@ TEST_F(GltfFiles, MutatedFilesLoadOrFailCleanly) {
     uint32_t acc = 0;
     int bits = 0;
     for (char c : b64) {
-      int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
-              : c == '+' ? 62 : c == '/' ? 63 : -1;
+      int v = c >= 'A' && c <= 'Z'   ? c - 'A'
+              : c >= 'a' && c <= 'z' ? c - 'a' + 26
+              : c >= '0' && c <= '9' ? c - '0' + 52
+              : c == '+'             ? 62
+              : c == '/'             ? 63
+                                     : -1;
       if (v < 0) continue;
       acc = (acc << 6) | uint32_t(v);
       bits += 6;
@@ -1065,8 +1090,10 @@ TEST_F(GltfFiles, MutatedFilesLoadOrFailCleanly) {
   std::string j = q.json(", \"material\": 0", top);
   j = replace_all(j, "\"uri\": \"" + data_uri(q.bin) + "\"", "\"x\": 0");
   j = replace_all(j, "{\"buffer\": 0, \"byteOffset\": " + std::to_string(q.idx) + ", \"byteLength\": 12}",
-                  "{\"buffer\": 0, \"byteOffset\": " + std::to_string(q.idx) + ", \"byteLength\": 12}, {\"buffer\": 0, "
-                  "\"byteOffset\": " + std::to_string(png_at) + ", \"byteLength\": " + std::to_string(png.size()) + "}");
+                  "{\"buffer\": 0, \"byteOffset\": " + std::to_string(q.idx) +
+                      ", \"byteLength\": 12}, {\"buffer\": 0, "
+                      "\"byteOffset\": " +
+                      std::to_string(png_at) + ", \"byteLength\": " + std::to_string(png.size()) + "}");
   j = replace_all(j, "\"byteLength\": " + std::to_string(q.bin.bytes.size()) + ",",
                   "\"byteLength\": " + std::to_string(bin.bytes.size()) + ",");
   const std::vector<uint8_t> glb = make_glb(j, bin.bytes);
@@ -1097,7 +1124,8 @@ TEST_F(GltfFiles, MutatedFilesLoadOrFailCleanly) {
       Scene s = read_gltf_scene(path);
       for (const Mesh& m : s.meshes)
         for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
-      for (const Texture& t : s.textures) ASSERT_EQ(t.pixels.size(), size_t(t.width) * size_t(t.height) * size_t(t.channels));
+      for (const Texture& t : s.textures)
+        ASSERT_EQ(t.pixels.size(), size_t(t.width) * size_t(t.height) * size_t(t.channels));
       ++loaded;
     } catch (const Error& e) {
       ++failed;

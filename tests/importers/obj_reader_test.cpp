@@ -69,7 +69,8 @@ TEST(ObjReader, StanfordBunnyGetsSmoothUnitNormals) {
   // Smooth normals agree with the faces around them.
   size_t agree = 0;
   for (size_t t = 0; t < m.triangle_count(); ++t) {
-    vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
+    vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+         c = m.positions[m.indices[3 * t + 2]];
     vec3 fn = glm::cross(b - a, c - a);
     if (glm::length(fn) == 0.f) continue;
     fn = glm::normalize(fn);
@@ -237,13 +238,13 @@ const EdgeCase edge_cases[] = {
      "faces with and without uvs/normals in one object; an unknown usemtl falls back to the default material"},
     {"box-mixed-attributes/box-mixed-attributes.obj", true, 12, 1, 1, 0, "",
      "corners without uv get (0,0), without normal get generated ones"},
-    {"box-mtllib-spaces/box mtllib.obj", true, 12, 1, 3, 0, "",
-     "mtllib file names with spaces, two files on one line"},
+    {"box-mtllib-spaces/box mtllib.obj", true, 12, 1, 3, 0, "", "mtllib file names with spaces, two files on one line"},
     {"box-mtllib/box-mtllib.obj", true, 12, 1, 3, 0, "", "several mtllib lines and two files on one line"},
     {"box-multiple-materials/box-multiple-materials.obj", true, 12, 1, 3, 0, "",
      "usemtl per face: Mesh::face_materials"},
     {"box-negative-indices/box-negative-indices.obj", true, 12, 1, 1, 0, "", "relative (negative) indices"},
-    {"box-no-materials/box-no-materials.obj", true, 36, 1, 1, 0, "", "no mtllib, no groups: one mesh, default material"},
+    {"box-no-materials/box-no-materials.obj", true, 36, 1, 1, 0, "",
+     "no mtllib, no groups: one mesh, default material"},
     {"box-normals/box-normals.obj", true, 12, 1, 1, 0, "", "normals only, no uvs"},
     {"box-objects-groups-materials-2/box-objects-groups-materials-2.obj", true, 36, 3, 3, 0, "",
      "usemtl before o/g and changing inside groups"},
@@ -316,10 +317,8 @@ TEST(ObjReader, Obj2GltfEdgeCasesLoadOrFailClearly) {
     EXPECT_EQ(s.meshes.size(), c.meshes);
     EXPECT_EQ(s.materials.size(), c.materials);
     EXPECT_EQ(s.textures.size(), c.textures);
-    if (std::string(c.message).empty())
-      EXPECT_TRUE(warnings.empty()) << warnings.front();
-    else
-      EXPECT_TRUE(any_contains(warnings, c.message)) << (warnings.empty() ? "no warnings" : warnings.front());
+    if (std::string(c.message).empty()) EXPECT_TRUE(warnings.empty()) << warnings.front();
+    else EXPECT_TRUE(any_contains(warnings, c.message)) << (warnings.empty() ? "no warnings" : warnings.front());
     // Every scene is well formed: stats walk it, every index is in range.
     SceneStats st = scene_stats(s);
     EXPECT_EQ(st.mesh_triangles, c.triangles);
@@ -340,9 +339,7 @@ TEST(ObjReader, Obj2GltfEdgeCasesLoadOrFailClearly) {
 
 TEST(ObjReader, EdgeCaseDetails) {
   RAYFORM_REQUIRE_SHARED();
-  auto load = [](const std::string& rel) {
-    return read_obj_scene(asset("obj2gltf-edge-cases/" + rel).string());
-  };
+  auto load = [](const std::string& rel) { return read_obj_scene(asset("obj2gltf-edge-cases/" + rel).string()); };
   {  // Angle-weighted normals of a cube made of quads: at every corner the
      // three faces count equally however the quads were split.
     Scene s = load("box-positions-only/box-positions-only.obj");
@@ -382,7 +379,8 @@ TEST(ObjReader, EdgeCaseDetails) {
   }
   {  // Written normals are normalised; a zero one is replaced by a generated one.
     std::vector<std::string> warnings;
-    Scene s = read_obj_scene(asset("obj2gltf-edge-cases/box-unnormalized/box-unnormalized.obj").string(), {}, &warnings);
+    Scene s =
+        read_obj_scene(asset("obj2gltf-edge-cases/box-unnormalized/box-unnormalized.obj").string(), {}, &warnings);
     for (const vec3& n : s.meshes[0].normals) EXPECT_NEAR(glm::length(n), 1.f, 1e-5f);
     EXPECT_TRUE(any_contains(warnings, "1 written normal(s) of zero length"));
     bool has_z = false;  // "vn 0 0 0.5" became (0, 0, 1)
@@ -394,7 +392,8 @@ TEST(ObjReader, EdgeCaseDetails) {
     const Mesh& m = s.meshes[0];
     float top = 0.f;
     for (size_t t = 0; t < m.triangle_count(); ++t) {
-      vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
+      vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+           c = m.positions[m.indices[3 * t + 2]];
       if (a.y > 0.f && b.y > 0.f && c.y > 0.f) top += 0.5f * glm::length(glm::cross(b - a, c - a));
     }
     // 2 x 2 square less the notch (base 2, depth 0.54185 + 0.33651).
@@ -480,8 +479,8 @@ TEST_F(ObjFiles, MaterialsAndTextureOptions) {
 
 TEST_F(ObjFiles, MissingMtlAndTextureAreWarnings) {
   file("m.mtl", "newmtl a\nKd 1 0 0\nmap_Kd nowhere.png\n");
-  std::string path = file("m.obj", std::string("mtllib m.mtl gone.mtl\n") + quad_obj +
-                                       "usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n");
+  std::string path =
+      file("m.obj", std::string("mtllib m.mtl gone.mtl\n") + quad_obj + "usemtl a\nf 1 2 3\nusemtl b\nf 1 3 4\n");
   std::vector<std::string> warnings;
   Scene s = read_obj_scene(path, {}, &warnings);
   EXPECT_TRUE(any_contains(warnings, "m.obj:1: cannot find material library 'gone.mtl'"));
@@ -529,7 +528,7 @@ TEST_F(ObjFiles, FlatOptionWithSomeNormalsSplitsOnlyTheMissingOnes) {
   std::string path = file("f.obj",
                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 2\n"
                           "f 1//1 2//1 3//1\n"  // written normal, scaled: normalised
-                          "f 1 2 4\n");        // no normals: its own face normal
+                          "f 1 2 4\n");         // no normals: its own face normal
   Scene flat = read_obj_scene(path, ObjReadOptions{true});
   const Mesh& m = flat.meshes[0];
   ASSERT_EQ(m.normals.size(), m.positions.size());
@@ -564,7 +563,8 @@ TEST_F(ObjFiles, ErrorsNameFileAndLine) {
 TEST_F(ObjFiles, MutatedFilesLoadOrFailCleanly) {
   const std::string base = std::string("mtllib m.mtl\no a\n") + quad_obj +
                            "vn 0 0 1\nusemtl x\nf 1/1/1 2/2/1 3/3/1 4/4/1\ng b\nf -1 -2 -3\n";
-  const std::string mtl = "newmtl x\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 10\nd 1\nmap_Kd -s 1 1 1 -o 0 0 -clamp on t.png\nmap_Bump -bm 2 b.png\n";
+  const std::string mtl =
+      "newmtl x\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 10\nd 1\nmap_Kd -s 1 1 1 -o 0 0 -clamp on t.png\nmap_Bump -bm 2 b.png\n";
   std::mt19937 rng(1234);
   const std::string alphabet = "0123456789-/ .\nvftgo#eKdNsmap_";
   int loaded = 0, failed = 0;

@@ -50,8 +50,10 @@ float max_image_coordinate(const Camera& c, const Bounds3& b) {
 }
 
 TEST(SceneDefaults, CameraFramesTheBoundsLookingDownMinusZ) {
-  for (const auto& [lo, hi] : std::vector<std::pair<vec3, vec3>>{
-           {{-1, -1, -1}, {1, 1, 1}}, {{10, 0, -3}, {14, 1, 5}}, {{0, -5, 0}, {0.1f, 5, 0.1f}}, {{-3, 2, 7}, {3, 2.5f, 9}}}) {
+  for (const auto& [lo, hi] : std::vector<std::pair<vec3, vec3>>{{{-1, -1, -1}, {1, 1, 1}},
+                                                                 {{10, 0, -3}, {14, 1, 5}},
+                                                                 {{0, -5, 0}, {0.1f, 5, 0.1f}},
+                                                                 {{-3, 2, 7}, {3, 2.5f, 9}}}) {
     Scene s = box_scene(lo, hi);
     ASSERT_TRUE(add_default_camera(s));
     ASSERT_EQ(s.cameras.size(), 1u);

@@ -27,8 +27,9 @@ namespace rayform {
 namespace {
 namespace fs = std::filesystem;
 
-const char* kCourseScenes[] = {"scene01_plane", "scene02_cube",      "scene03_sphere", "scene04_axes", "scene05_bunny_200",
-                               "scene06_bunny_1k", "scene07_shine", "scene08_c",      "scene09_s"};
+const char* kCourseScenes[] = {"scene01_plane", "scene02_cube",      "scene03_sphere",
+                               "scene04_axes",  "scene05_bunny_200", "scene06_bunny_1k",
+                               "scene07_shine", "scene08_c",         "scene09_s"};
 
 fs::path course(const std::string& name) { return test::shared_dir() / "course" / "2012" / (name + ".txt"); }
 using test::any_contains;
@@ -88,7 +89,9 @@ void expect_same_mesh(const Mesh& a, const Mesh& b, float normal_tol, float uv_t
     // (A zero normal, which readers make where only degenerate faces meet, is
     // not data a format keeps: OBJ readers make it again from the faces.)
     if (!a.normals.empty() && a.normals[i] != vec3(0.f) && glm::length(a.normals[i] - b.normals[j]) > normal_tol) {
-      ADD_FAILURE() << what << ": corner " << c << " normal differs by " << glm::length(a.normals[i] - b.normals[j]) << " (" << a.normals[i].x << " " << a.normals[i].y << " " << a.normals[i].z << " vs " << b.normals[j].x << " " << b.normals[j].y << " " << b.normals[j].z << ")";
+      ADD_FAILURE() << what << ": corner " << c << " normal differs by " << glm::length(a.normals[i] - b.normals[j])
+                    << " (" << a.normals[i].x << " " << a.normals[i].y << " " << a.normals[i].z << " vs "
+                    << b.normals[j].x << " " << b.normals[j].y << " " << b.normals[j].z << ")";
       ++bad;
     }
     if (!a.uvs.empty() && glm::length(a.uvs[i] - b.uvs[j]) > uv_tol) {
@@ -285,7 +288,8 @@ TEST(SceneWriter, GlbWithoutShapeExtrasHoldsTessellations) {
 TEST(SceneWriter, ObjThroughGltfAndObjKeepsCounts) {
   RAYFORM_REQUIRE_SHARED();
   fs::path dir = test::temp_dir("writer-obj");
-  for (const char* rel : {"duck/duck.obj", "obj/spider/spider.obj", "obj/cornell-box/cornell-box.obj", "obj/suzanne.obj"}) {
+  for (const char* rel :
+       {"duck/duck.obj", "obj/spider/spider.obj", "obj/cornell-box/cornell-box.obj", "obj/suzanne.obj"}) {
     Scene a = load_scene(asset(rel).string()).scene;
     Scene b = write_and_read(a, dir / "m.gltf");
     Scene c = write_and_read(b, dir / "m.obj");
@@ -653,7 +657,7 @@ TEST(SceneWriter, StaleExtrasAreIgnoredWithAWarning) {
   EXPECT_TRUE(any_contains(b.warnings, "not those rayform wrote")) << joined(b.warnings);
   EXPECT_TRUE(any_contains(b.warnings, "no longer lie on the sphere")) << joined(b.warnings);
   EXPECT_EQ(b.scene.materials[0].diffuse, vec3(0.25f, 0.5f, 0.75f));  // the file's colour wins
-  EXPECT_EQ(scene_stats(b.scene).spheres, 0u);                       // the mesh stays a mesh
+  EXPECT_EQ(scene_stats(b.scene).spheres, 0u);                        // the mesh stays a mesh
   EXPECT_EQ(scene_stats(b.scene).meshes, 1u);
   fs::remove_all(dir);
 }
@@ -734,7 +738,8 @@ TEST(SceneWriter, TessellatedSphereIsClosedAndFacesOutwards) {
     EXPECT_EQ(m.positions.size(), size_t(2 + segments * (bands - 1)));
     double volume = 0.0;  // divergence theorem: positive and close to 4/3 pi r^3 when closed and outward
     for (size_t t = 0; t < m.triangle_count(); ++t) {
-      dvec3 a = dvec3(m.positions[m.indices[3 * t]] - s.center), b = dvec3(m.positions[m.indices[3 * t + 1]] - s.center),
+      dvec3 a = dvec3(m.positions[m.indices[3 * t]] - s.center),
+            b = dvec3(m.positions[m.indices[3 * t + 1]] - s.center),
             c = dvec3(m.positions[m.indices[3 * t + 2]] - s.center);
       EXPECT_GT(glm::length(glm::cross(b - a, c - a)), 0.0);  // no degenerate triangle
       volume += glm::dot(a, glm::cross(b, c)) / 6.0;

@@ -45,7 +45,8 @@ TEST(StressDegenerate, KernelsNeverMakeNaN) {
     Ray ray;
     ray.origin = vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3));
     ray.direction = vec3(rng.unit_vector());
-    vec3 a = odd_vector(rng), b = rng.uniform() < 0.3 ? a : odd_vector(rng), c = rng.uniform() < 0.3 ? b : odd_vector(rng);
+    vec3 a = odd_vector(rng), b = rng.uniform() < 0.3 ? a : odd_vector(rng),
+         c = rng.uniform() < 0.3 ? b : odd_vector(rng);
     if (rng.uniform() < 0.3) c = a + 0.5f * (b - a);  // collinear: zero area
     TriangleHit th;
     ++calls;
@@ -125,7 +126,10 @@ Scene degenerate_scene() {
   s.materials = {Material{}, mirror, glass};
 
   // Spheres: ordinary, zero radius, negative radius, NaN centre, infinite radius.
-  s.spheres = {{vec3(0, 0, 0), 1.f}, {vec3(1, 1, 0), 0.f}, {vec3(-1.5f, 0, 0), -0.5f}, {vec3(nan_f, 0, 0), 1.f},
+  s.spheres = {{vec3(0, 0, 0), 1.f},
+               {vec3(1, 1, 0), 0.f},
+               {vec3(-1.5f, 0, 0), -0.5f},
+               {vec3(nan_f, 0, 0), 1.f},
                {vec3(0, -1, 0), inf_f}};
   // Planes: ordinary, zero normal, NaN offset, infinite normal.
   s.planes = {{vec3(0, 1, 0), -2.f}, {vec3(0.f), 1.f}, {vec3(1, 0, 0), nan_f}, {vec3(0, 0, inf_f), 0.f}};
@@ -172,9 +176,11 @@ Scene degenerate_scene() {
   std::vector<int> children;
   int material = 0;
   auto all_shapes = [&](auto&& wrap) {
-    for (int i = 0; i < int(s.spheres.size()); ++i) children.push_back(wrap(shape(ShapeKind::sphere, i, material++ % 3)));
+    for (int i = 0; i < int(s.spheres.size()); ++i)
+      children.push_back(wrap(shape(ShapeKind::sphere, i, material++ % 3)));
     for (int i = 0; i < int(s.planes.size()); ++i) children.push_back(wrap(shape(ShapeKind::plane, i, material++ % 3)));
-    for (int i = 0; i < int(s.triangles.size()); ++i) children.push_back(wrap(shape(ShapeKind::triangle, i, material++ % 3)));
+    for (int i = 0; i < int(s.triangles.size()); ++i)
+      children.push_back(wrap(shape(ShapeKind::triangle, i, material++ % 3)));
     for (int i = 0; i < int(s.meshes.size()); ++i) children.push_back(wrap(shape(ShapeKind::mesh, i, material++ % 3)));
   };
   all_shapes([](int n) { return n; });
@@ -215,7 +221,8 @@ TEST(StressDegenerate, SceneQueriesAndRender) {
     ++hits;
     const SurfacePoint sp = surface_point(prepared, ray, hit);
     bool bad = !std::isfinite(hit.t) || std::isnan(hit.b1) || std::isnan(hit.b2);
-    bad |= !is_finite(sp.position) || has_nan(sp.position_error) || !is_finite(sp.normal) || !is_finite(sp.geometric_normal);
+    bad |= !is_finite(sp.position) || has_nan(sp.position_error) || !is_finite(sp.normal) ||
+           !is_finite(sp.geometric_normal);
     const Ray r = spawn_ray(sp.position, sp.position_error, sp.geometric_normal, -ray.direction);
     const Ray s = spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, vec3(2, 3, 4));
     bad |= has_nan(r.origin) || has_nan(s.origin) || has_nan(s.direction);
@@ -260,13 +267,16 @@ TEST(StressDegenerate, SceneQueriesAndRender) {
     o.bounces = variant == 1 ? 3 : 0;
     RenderResult res;
     ASSERT_NO_THROW(res = render(prepared, o));
-    for (float v : res.color.pixels) { ++pixels; bad_pixels += !std::isfinite(v); }
+    for (float v : res.color.pixels) {
+      ++pixels;
+      bad_pixels += !std::isfinite(v);
+    }
     for (const vec3& nrm : res.normals) bad_pixels += !is_finite(nrm);
     for (float d : res.depth) bad_pixels += std::isnan(d);
   }
-  std::cout << "[stress] degenerate scene: " << prepared.instances.size() << " instances, " << rays << " rays, "
-            << hits << " hits; ours " << ours_bad << " hits with NaN/non-finite output, " << bad_pixels << " of "
-            << pixels << " pixel values not finite; origin + 1e-4 * normalize(n): " << naive_nan << " NaN origins\n";
+  std::cout << "[stress] degenerate scene: " << prepared.instances.size() << " instances, " << rays << " rays, " << hits
+            << " hits; ours " << ours_bad << " hits with NaN/non-finite output, " << bad_pixels << " of " << pixels
+            << " pixel values not finite; origin + 1e-4 * normalize(n): " << naive_nan << " NaN origins\n";
   report("degenerate.scene", hits, ours_bad + bad_pixels, naive_nan, "normalize_plus_1e-4");
   EXPECT_GT(hits, 0);
   EXPECT_EQ(ours_bad, 0);

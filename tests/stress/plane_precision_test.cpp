@@ -29,7 +29,10 @@ struct Counts {
   int64_t samples = 0, ours_wrong = 0, ours_t = 0, naive_wrong = 0, naive_t = 0;
   double ours_max_rel = 0, naive_max_rel = 0;
   Counts& operator+=(const Counts& o) {
-    samples += o.samples; ours_wrong += o.ours_wrong; ours_t += o.ours_t; naive_wrong += o.naive_wrong;
+    samples += o.samples;
+    ours_wrong += o.ours_wrong;
+    ours_t += o.ours_t;
+    naive_wrong += o.naive_wrong;
     naive_t += o.naive_t;
     ours_max_rel = std::max(ours_max_rel, o.ours_max_rel);
     naive_max_rel = std::max(naive_max_rel, o.naive_max_rel);
@@ -54,7 +57,8 @@ TEST(StressPlane, GrazingAnglesAgainstLongDouble) {
       const vec3 o = vec3(q + h * nu + rng.uniform(0.0, 1e3) * (std::cos(phi) * t1 + std::sin(phi) * t2));
       const double theta = rng.log_uniform(1e-7, 1e-1);
       const double psi = rng.uniform(0.0, 6.283185307179586);
-      dvec3 dir = std::cos(theta) * (std::cos(psi) * t1 + std::sin(psi) * t2) - (h > 0 ? 1.0 : -1.0) * std::sin(theta) * nu;
+      dvec3 dir =
+          std::cos(theta) * (std::cos(psi) * t1 + std::sin(psi) * t2) - (h > 0 ? 1.0 : -1.0) * std::sin(theta) * nu;
       if (rng.uniform() < 0.25) dir *= rng.log_uniform(1e-3, 1e3);
       const vec3 d = vec3(dir);
 
@@ -88,9 +92,9 @@ TEST(StressPlane, GrazingAnglesAgainstLongDouble) {
     }
   });
   std::cout << "[stress] plane: " << c.samples << " grazing rays; ours: " << c.ours_wrong << " misses, " << c.ours_t
-            << " distances beyond gamma(4) |t| (largest relative error " << c.ours_max_rel << "); float with eps: "
-            << c.naive_wrong << " misses, " << c.naive_t << " beyond the bound (largest relative error "
-            << c.naive_max_rel << ")\n";
+            << " distances beyond gamma(4) |t| (largest relative error " << c.ours_max_rel
+            << "); float with eps: " << c.naive_wrong << " misses, " << c.naive_t
+            << " beyond the bound (largest relative error " << c.naive_max_rel << ")\n";
   report("plane", c.samples, c.ours_wrong + c.ours_t, c.naive_wrong + c.naive_t, "float_eps");
   EXPECT_EQ(c.ours_wrong, 0);
   EXPECT_EQ(c.ours_t, 0);

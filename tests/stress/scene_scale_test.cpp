@@ -92,7 +92,8 @@ Scene make_scene(const Xform& x, bool baked) {
   s.planes = {{vec3(0.f, 1.f, 0.f), 0.f}};
   s.spheres = {{vec3(-1.5f, 1.f, 0.f), 1.f}, {vec3(1.3f, 0.4f, 1.4f), 0.4f}};
   s.triangles = {{{vec3(-3.2f, 2.6f, -2.2f), vec3(-0.8f, 3.1f, -3.f), vec3(-2.1f, 2.2f, -0.7f)}}};
-  s.meshes = {placed(make_icosphere(2), 0.8f, vec3(1.6f, 0.8f, -1.f)), placed(make_cube(), 0.6f, vec3(-0.2f, 0.6f, -2.6f))};
+  s.meshes = {placed(make_icosphere(2), 0.8f, vec3(1.6f, 0.8f, -1.f)),
+              placed(make_cube(), 0.6f, vec3(-0.2f, 0.6f, -2.6f))};
 
   Light sun;
   sun.kind = Light::Kind::directional;
@@ -137,9 +138,9 @@ Scene make_scene(const Xform& x, bool baked) {
   if (!baked) top.local = x.matrix();
   s.nodes.push_back(top);
   s.root = 0;
-  s.nodes[0].children = {shape(ShapeKind::plane, 0, 0),    shape(ShapeKind::sphere, 0, 1),
-                         shape(ShapeKind::sphere, 1, 4),   shape(ShapeKind::triangle, 0, 2),
-                         shape(ShapeKind::mesh, 0, 3),     shape(ShapeKind::mesh, 1, 2)};
+  s.nodes[0].children = {shape(ShapeKind::plane, 0, 0),  shape(ShapeKind::sphere, 0, 1),
+                         shape(ShapeKind::sphere, 1, 4), shape(ShapeKind::triangle, 0, 2),
+                         shape(ShapeKind::mesh, 0, 3),   shape(ShapeKind::mesh, 1, 2)};
   return s;
 }
 
@@ -265,8 +266,8 @@ TEST(StressSceneScale, NoSelfShadowingTranslatedAndScaled) {
   struct Case {
     double t, s;
   };
-  const Case cases[] = {{1e3, 1},  {1e4, 1},    {1e5, 1},    {1e6, 1},   {0, 1e-4},
-                        {0, 1e-2}, {0, 1e2},    {0, 1e4},    {1e3, 1e-2}, {1e6, 1e4}};
+  const Case cases[] = {{1e3, 1},  {1e4, 1}, {1e5, 1}, {1e6, 1},    {0, 1e-4},
+                        {0, 1e-2}, {0, 1e2}, {0, 1e4}, {1e3, 1e-2}, {1e6, 1e4}};
 
   for (bool baked : {false, true}) {
     const char* form = baked ? "baked" : "instanced";
@@ -277,9 +278,10 @@ TEST(StressSceneScale, NoSelfShadowingTranslatedAndScaled) {
     ShadowCounts ref_naive;  // the fixed epsilon in the untransformed scene itself
     for (const PixelTrace& px : ref)
       for (int li = 0; li < 2; ++li) count(px.ours[li], px.naive[li], ref_naive);
-    std::printf("[stress] scene_scale.%s t=0 s=1: %lld pairs, fixed_eps_1e-4 self-shadowed %lld, leaked %lld, other %lld\n",
-                form, (long long)ref_naive.pairs, (long long)ref_naive.self, (long long)ref_naive.leak,
-                (long long)ref_naive.other);
+    std::printf(
+        "[stress] scene_scale.%s t=0 s=1: %lld pairs, fixed_eps_1e-4 self-shadowed %lld, leaked %lld, other %lld\n",
+        form, (long long)ref_naive.pairs, (long long)ref_naive.self, (long long)ref_naive.leak,
+        (long long)ref_naive.other);
 
     for (const Case& cs : cases) {
       const Scene scene = make_scene(Xform{cs.s, cs.t}, baked);
@@ -334,17 +336,17 @@ TEST(StressSceneScale, NoSelfShadowingTranslatedAndScaled) {
       char name[96];
       std::snprintf(name, sizeof name, "scene_scale.%s.t%g_s%g", form, cs.t, cs.s);
       report(name, r.ours.pairs, r.ours.self, r.naive.self + r.naive.leak, "fixed_eps_1e-4");
-      std::printf("[stress]   %s: pixels same primitive %lld, other primitive %lld; ours self-shadowed %lld, "
-                  "leaked %lld, other %lld; fixed eps self-shadowed %lld, leaked %lld, other %lld; "
-                  "image %dx%d: %lld pixels differ by > %.2f (%.2f%%), %lld on edges, %lld interior, "
-                  "worst interior %.3g; float spacing %.3g = %.3g pixels, edge band %d px, largest shadow "
-                  "origin offset %.3g spacings\n",
-                  name, (long long)r.same_primitive, (long long)r.other_primitive, (long long)r.ours.self,
-                  (long long)r.ours.leak, (long long)r.ours.other, (long long)r.naive.self, (long long)r.naive.leak,
-                  (long long)r.naive.other, n, n, (long long)r.differing, double(color_tolerance),
-                  100.0 * double(r.differing) / double(n * n), (long long)r.differing_edge,
-                  (long long)r.differing_interior, double(r.worst_interior), spacing, spacing / footprint, band,
-                  double(max_offset) / spacing);
+      std::printf(
+          "[stress]   %s: pixels same primitive %lld, other primitive %lld; ours self-shadowed %lld, "
+          "leaked %lld, other %lld; fixed eps self-shadowed %lld, leaked %lld, other %lld; "
+          "image %dx%d: %lld pixels differ by > %.2f (%.2f%%), %lld on edges, %lld interior, "
+          "worst interior %.3g; float spacing %.3g = %.3g pixels, edge band %d px, largest shadow "
+          "origin offset %.3g spacings\n",
+          name, (long long)r.same_primitive, (long long)r.other_primitive, (long long)r.ours.self,
+          (long long)r.ours.leak, (long long)r.ours.other, (long long)r.naive.self, (long long)r.naive.leak,
+          (long long)r.naive.other, n, n, (long long)r.differing, double(color_tolerance),
+          100.0 * double(r.differing) / double(n * n), (long long)r.differing_edge, (long long)r.differing_interior,
+          double(r.worst_interior), spacing, spacing / footprint, band, double(max_offset) / spacing);
       ::testing::Test::RecordProperty(std::string(name) + ".image_differing", std::to_string(r.differing));
       ::testing::Test::RecordProperty(std::string(name) + ".image_differing_interior",
                                       std::to_string(r.differing_interior));

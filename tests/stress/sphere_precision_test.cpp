@@ -30,17 +30,23 @@ bool naive_sphere(vec3 o, vec3 d, vec3 c, float r, float* t_hit) {
   if (disc < 0.f) return false;
   float s = std::sqrt(disc);
   float t = (-b - s) / (2.f * a);
-  if (t > 1e-4f) { *t_hit = t; return true; }
+  if (t > 1e-4f) {
+    *t_hit = t;
+    return true;
+  }
   t = (-b + s) / (2.f * a);
-  if (t > 1e-4f) { *t_hit = t; return true; }
+  if (t > 1e-4f) {
+    *t_hit = t;
+    return true;
+  }
   return false;
 }
 
 struct Reference {
   bool hit = false;
-  ld t = 0;           // nearest root > 0
-  ld line_dist = 0;   // |l|, distance of the centre to the line
-  ld f_len = 0;       // |o - c|
+  ld t = 0;          // nearest root > 0
+  ld line_dist = 0;  // |l|, distance of the centre to the line
+  ld f_len = 0;      // |o - c|
   ld d_len = 0;
 };
 
@@ -60,8 +66,13 @@ Reference reference(vec3 of, vec3 df, vec3 cf, float rf) {
   const ld cc = dot(f, f) - r * r;
   ld t0 = q == 0 ? 0 : cc / q, t1 = q / a;
   if (t0 > t1) std::swap(t0, t1);
-  if (t0 > 0) { ref.hit = true; ref.t = t0; }
-  else if (t1 > 0) { ref.hit = true; ref.t = t1; }
+  if (t0 > 0) {
+    ref.hit = true;
+    ref.t = t0;
+  } else if (t1 > 0) {
+    ref.hit = true;
+    ref.t = t1;
+  }
   return ref;
 }
 
@@ -70,8 +81,13 @@ struct Counts {
   int64_t ours_wrong = 0, ours_t = 0, naive_wrong = 0, naive_t = 0;
   double ours_max_t_ratio = 0;  // max t error / stated bound over hits
   Counts& operator+=(const Counts& o) {
-    samples += o.samples; ref_hits += o.ref_hits; ambiguous += o.ambiguous;
-    ours_wrong += o.ours_wrong; ours_t += o.ours_t; naive_wrong += o.naive_wrong; naive_t += o.naive_t;
+    samples += o.samples;
+    ref_hits += o.ref_hits;
+    ambiguous += o.ambiguous;
+    ours_wrong += o.ours_wrong;
+    ours_t += o.ours_t;
+    naive_wrong += o.naive_wrong;
+    naive_t += o.naive_t;
     ours_max_t_ratio = std::max(ours_max_t_ratio, o.ours_max_t_ratio);
     return *this;
   }
@@ -127,8 +143,9 @@ TEST(StressSphere, PrecisionAgainstLongDouble) {
   });
   std::cout << "[stress] sphere: " << c.samples << " rays (" << c.ref_hits << " hits in the reference, " << c.ambiguous
             << " within the tangency band); ours: " << c.ours_wrong << " wrong hit/miss, " << c.ours_t
-            << " distances beyond the bound (largest error / bound " << c.ours_max_t_ratio << "); b^2-4ac eps=1e-4: "
-            << c.naive_wrong << " wrong hit/miss, " << c.naive_t << " distances beyond the bound\n";
+            << " distances beyond the bound (largest error / bound " << c.ours_max_t_ratio
+            << "); b^2-4ac eps=1e-4: " << c.naive_wrong << " wrong hit/miss, " << c.naive_t
+            << " distances beyond the bound\n";
   report("sphere", c.samples, c.ours_wrong + c.ours_t, c.naive_wrong + c.naive_t, "textbook_quadratic_eps");
   EXPECT_EQ(c.ours_wrong, 0);
   EXPECT_EQ(c.ours_t, 0);

@@ -52,7 +52,8 @@ struct Rng {
     double u1 = uniform(), u2 = uniform(), u3 = uniform();
     const double tau = 2.0 * 3.14159265358979323846;
     double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    double x = a * std::sin(tau * u2), y = a * std::cos(tau * u2), z = b * std::sin(tau * u3), w = b * std::cos(tau * u3);
+    double x = a * std::sin(tau * u2), y = a * std::cos(tau * u2), z = b * std::sin(tau * u3),
+           w = b * std::cos(tau * u3);
     glm::dmat3 m;
     m[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
     m[1] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};

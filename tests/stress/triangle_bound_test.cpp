@@ -24,9 +24,12 @@ bool pbrt_v4_bound_hits(const Ray& ray, vec3 p0, vec3 p1, vec3 p2) {
   a = vec3(a[r.kx], a[r.ky], a[r.kz]);
   b = vec3(b[r.kx], b[r.ky], b[r.kz]);
   c = vec3(c[r.kx], c[r.ky], c[r.kz]);
-  a.x += r.sx * a.z; a.y += r.sy * a.z;
-  b.x += r.sx * b.z; b.y += r.sy * b.z;
-  c.x += r.sx * c.z; c.y += r.sy * c.z;
+  a.x += r.sx * a.z;
+  a.y += r.sy * a.z;
+  b.x += r.sx * b.z;
+  b.y += r.sy * b.z;
+  c.x += r.sx * c.z;
+  c.y += r.sy * c.z;
   float e0 = b.x * c.y - b.y * c.x, e1 = c.x * a.y - c.y * a.x, e2 = a.x * b.y - a.y * b.x;
   if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
     e0 = float(double(b.x) * double(c.y) - double(b.y) * double(c.x));
@@ -36,7 +39,9 @@ bool pbrt_v4_bound_hits(const Ray& ray, vec3 p0, vec3 p1, vec3 p2) {
   if ((e0 < 0.f || e1 < 0.f || e2 < 0.f) && (e0 > 0.f || e1 > 0.f || e2 > 0.f)) return false;
   const float det = e0 + e1 + e2;
   if (det == 0.f) return false;
-  a.z *= r.sz; b.z *= r.sz; c.z *= r.sz;
+  a.z *= r.sz;
+  b.z *= r.sz;
+  c.z *= r.sz;
   const float t = (e0 * a.z + e1 * b.z + e2 * c.z) / det;
   if (!(t > ray.tmin && t < ray.tmax)) return false;
   const float max_zt = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
@@ -68,7 +73,10 @@ bool moller_trumbore_eps(const Ray& ray, vec3 p0, vec3 p1, vec3 p2) {
 struct Counts {
   int64_t rays = 0, ours = 0, pbrt = 0, naive = 0;
   Counts& operator+=(const Counts& o) {
-    rays += o.rays; ours += o.ours; pbrt += o.pbrt; naive += o.naive;
+    rays += o.rays;
+    ours += o.ours;
+    pbrt += o.pbrt;
+    naive += o.naive;
     return *this;
   }
 };
@@ -108,7 +116,8 @@ TEST(StressTriangleBound, NoSelfHitFromAnUnmovedOrigin) {
       k.naive += moller_trumbore_eps(ray, A, B, C1) || moller_trumbore_eps(ray, B, A, C2);
     }
   });
-  std::cout << "[stress] triangle bound: " << c.rays << " rays leaving a triangle from an unmoved origin; hits on it or "
+  std::cout << "[stress] triangle bound: " << c.rays
+            << " rays leaving a triangle from an unmoved origin; hits on it or "
             << "its neighbour: ours " << c.ours << ", pbrt-v4's bound (scaled z) " << c.pbrt
             << ", Moller-Trumbore eps=1e-6, t > 1e-4: " << c.naive << "\n";
   report("triangle_bound", c.rays, c.ours, c.naive, "moller_trumbore_eps");

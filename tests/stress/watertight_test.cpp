@@ -81,9 +81,10 @@ void debug_dump(const char* what, vec3 origin, vec3 dir, const std::vector<vec3>
   std::ostringstream s;
   s << "through the mesh (" << what << "): origin " << hex(origin) << " direction " << hex(dir) << "\n";
   for (uint32_t g : around)
-    s << "  around " << g << ": " << hex(pos[mesh.indices[3 * g]]) << " | " << hex(pos[mesh.indices[3 * g + 1]]) << " | "
-      << hex(pos[mesh.indices[3 * g + 2]]) << "\n";
-  for (const RayHit& h : hits) s << "  hit t=" << h.t << " triangle " << h.triangle << (h.exit ? " (exit)" : "") << "\n";
+    s << "  around " << g << ": " << hex(pos[mesh.indices[3 * g]]) << " | " << hex(pos[mesh.indices[3 * g + 1]])
+      << " | " << hex(pos[mesh.indices[3 * g + 2]]) << "\n";
+  for (const RayHit& h : hits)
+    s << "  hit t=" << h.t << " triangle " << h.triangle << (h.exit ? " (exit)" : "") << "\n";
   std::cout << s.str();
 }
 
@@ -108,8 +109,13 @@ struct Counts {
   int64_t rays = 0, loop_rays = 0, naive_rays = 0, skipped = 0;
   int64_t ours_bvh = 0, ours_loop = 0, naive = 0, range_violations = 0;
   Counts& operator+=(const Counts& o) {
-    rays += o.rays; loop_rays += o.loop_rays; naive_rays += o.naive_rays; skipped += o.skipped;
-    ours_bvh += o.ours_bvh; ours_loop += o.ours_loop; naive += o.naive;
+    rays += o.rays;
+    loop_rays += o.loop_rays;
+    naive_rays += o.naive_rays;
+    skipped += o.skipped;
+    ours_bvh += o.ours_bvh;
+    ours_loop += o.ours_loop;
+    naive += o.naive;
     range_violations += o.range_violations;
     return *this;
   }
@@ -176,7 +182,10 @@ Counts run_mesh(const Mesh& mesh, int64_t rays, uint64_t seed) {
         const dvec3 n = face_normal(g);
         crossing &= glm::dot(dvec3(dir), n) < -min_cos * glm::length(dvec3(dir)) * glm::length(n);
       }
-      if (!crossing) { ++c.skipped; continue; }
+      if (!crossing) {
+        ++c.skipped;
+        continue;
+      }
       ++i;
       ++c.rays;
       for (uint32_t g : marked) around[g] = 1;

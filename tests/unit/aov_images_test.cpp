@@ -101,7 +101,8 @@ TEST(AovImages, RenderedSphereDepthAndNormal) {
   EXPECT_EQ(res.normals[centre], vec3(0, 0, 1));
   EXPECT_TRUE(std::isinf(res.depth[corner]));
   EXPECT_EQ(res.normals[corner], vec3(0.f));
-  Image d12 = depth_image(res, 8.f, 12.f, DepthStyle::near_white), d19 = depth_image(res, 8.f, 12.f, DepthStyle::near_black);
+  Image d12 = depth_image(res, 8.f, 12.f, DepthStyle::near_white),
+        d19 = depth_image(res, 8.f, 12.f, DepthStyle::near_black);
   EXPECT_EQ(d12.pixels[3 * centre], 0.75f);
   EXPECT_EQ(d19.pixels[3 * centre], 0.25f);
   EXPECT_EQ(d12.pixels[3 * corner], 0.f);

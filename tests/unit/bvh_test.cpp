@@ -234,7 +234,8 @@ int check_subtree(const Bvh& bvh, uint32_t index, std::span<const Bounds3> prims
     EXPECT_TRUE(glm::all(glm::lessThanEqual(n.lo, ch.lo)) && glm::all(glm::greaterThanEqual(n.hi, ch.hi)))
         << "node " << index << " does not enclose child " << c;
   }
-  return 1 + std::max(check_subtree(bvh, left, prims, max_leaf, seen), check_subtree(bvh, right, prims, max_leaf, seen));
+  return 1 +
+         std::max(check_subtree(bvh, left, prims, max_leaf, seen), check_subtree(bvh, right, prims, max_leaf, seen));
 }
 
 TEST(Bvh, TreeIsWellFormed) {

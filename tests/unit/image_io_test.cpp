@@ -21,10 +21,18 @@ TEST(ImageIo, EightBitFormatsQuantiseByFloor) {
   auto dir = test::temp_dir("image_io_floor");
   // value -> expected byte: floor(v * 255) clamped; NaN -> 0.
   const std::vector<std::pair<float, int>> cases = {
-      {0.f, 0},         {1.f, 255},       {0.5f, 127},     // round-to-nearest would give 128
-      {0.999f, 254},    {0.99999f, 254},  {1.7f, 255},     // above 1 clamps
-      {-0.2f, 0},       {0.0039f, 0},     {0.004f, 1},     // 1/255 = 0.0039216
-      {100.f / 255.f + 0.002f, 100},      {std::nanf(""), 0}, {infinity, 255},
+      {0.f, 0},
+      {1.f, 255},
+      {0.5f, 127},  // round-to-nearest would give 128
+      {0.999f, 254},
+      {0.99999f, 254},
+      {1.7f, 255},  // above 1 clamps
+      {-0.2f, 0},
+      {0.0039f, 0},
+      {0.004f, 1},  // 1/255 = 0.0039216
+      {100.f / 255.f + 0.002f, 100},
+      {std::nanf(""), 0},
+      {infinity, 255},
   };
   Image img(int(cases.size()), 1, 1);
   for (size_t i = 0; i < cases.size(); ++i) img.pixels[i] = cases[i].first;
@@ -82,8 +90,8 @@ TEST(ImageIo, RoundTripPngAndBmp) {
 TEST(ImageIo, RoundTripExrKeepsFloatValues) {
   auto dir = test::temp_dir("image_io_exr");
   Image img(3, 2, 3);
-  const float values[] = {-1.5f, 0.f, 1e-3f, 0.123456789f, 1.f, 2.5f, 1000.25f, 1.f / 3.f, 7.f, -0.f, 0.5f, 65504.f,
-                          1e-8f, 3.14159f, 0.75f, 2.f / 7.f, 9.f, 0.1f};
+  const float values[] = {-1.5f, 0.f,  1e-3f,   0.123456789f, 1.f,      2.5f,  1000.25f,  1.f / 3.f, 7.f,
+                          -0.f,  0.5f, 65504.f, 1e-8f,        3.14159f, 0.75f, 2.f / 7.f, 9.f,       0.1f};
   std::copy(std::begin(values), std::end(values), img.pixels.begin());
   fs::path p = dir / "f.exr";
   write_image(p.string(), img);

@@ -94,7 +94,10 @@ TEST(PlaneIntersect, GrazingRaysStayAccurate) {
     bool hit = intersect_plane(make_ray(o, dir), n, d, &t);
     if (std::abs(exact) < 1e-3) continue;  // too close to the origin to classify
     ASSERT_EQ(hit, exact > 0.0) << "exact t = " << exact;
-    if (!hit) { ++tested; continue; }
+    if (!hit) {
+      ++tested;
+      continue;
+    }
     double den_scale = std::abs(exact) * glm::length(dvec3(dir)) / std::abs(dn);
     double num_scale = (std::abs(double(d)) + glm::length(dvec3(o))) / std::abs(dn);
     double bound = 8.0 * machine_epsilon * (std::abs(exact) + den_scale + num_scale);

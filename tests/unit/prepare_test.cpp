@@ -46,7 +46,8 @@ PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
 Group { numObjects 3
   Transform { Translate -3 0 0 TriangleMesh { obj_file cube.obj } }
   Transform { Translate 3 0 0 TriangleMesh { obj_file ./cube.obj } }
-  Transform { UniformScale 0.5 TriangleMesh { obj_file )" + (dir / "cube.obj").string() + R"( } }
+  Transform { UniformScale 0.5 TriangleMesh { obj_file )" +
+                     (dir / "cube.obj").string() + R"( } }
 }
 )";
   write_file(dir / "scene.txt", text);
@@ -151,10 +152,10 @@ TEST(Prepare, FlattensTheTreeWithWorldMatrices) {
   Node inner;
   inner.kind = Node::Kind::transform;
   inner.local = glm::scale(mat4(1.f), vec3(2.f));
-  Node group;  // a nested group holding the same sphere twice
-  s.nodes.push_back(outer);     // 1
-  s.nodes.push_back(inner);     // 2
-  s.nodes.push_back(group);     // 3
+  Node group;                                                    // a nested group holding the same sphere twice
+  s.nodes.push_back(outer);                                      // 1
+  s.nodes.push_back(inner);                                      // 2
+  s.nodes.push_back(group);                                      // 3
   s.nodes.push_back(shape_node(ShapeKind::sphere, 0, invalid));  // 4
   s.nodes[0].children = {1, 4};
   s.nodes[1].children = {2};

@@ -35,7 +35,8 @@ void expect_identical(const RenderResult& a, const RenderResult& b, const std::s
   EXPECT_EQ(differing(a.depth.data(), b.depth.data(), a.depth.size()), 0u) << what << ": depth";
   ASSERT_EQ(a.normals.size(), b.normals.size()) << what;
   EXPECT_EQ(differing(&a.normals[0].x, &b.normals[0].x, 3 * a.normals.size()), 0u) << what << ": normals";
-  EXPECT_EQ(differing(a.albedo.pixels.data(), b.albedo.pixels.data(), a.albedo.pixels.size()), 0u) << what << ": albedo";
+  EXPECT_EQ(differing(a.albedo.pixels.data(), b.albedo.pixels.data(), a.albedo.pixels.size()), 0u)
+      << what << ": albedo";
 }
 
 // Renders `scene` specialised and generic with the same options; returns the path name.
@@ -63,7 +64,8 @@ TEST(RenderPaths, CourseScenesSpecialisedEqualsGeneric) {
         o.width = o.height = 48;
         o.shadows = variant == 1;
         o.bounces = variant == 1 ? 3 : 0;
-        std::string name = check_paths(l.scene, o, e.path().filename().string() + (variant ? " -shadows -bounces 3" : ""));
+        std::string name =
+            check_paths(l.scene, o, e.path().filename().string() + (variant ? " -shadows -bounces 3" : ""));
         specialised += name != "generic";
       }
       ++scenes;

@@ -62,11 +62,11 @@ TEST(TriangleIntersect, BothFacesAreHit) {
 TEST(TriangleIntersect, Misses) {
   TriangleHit h{};
   h.t = 77.f;
-  EXPECT_FALSE(intersect_triangle(make_ray({0.6f, 0.6f, 1}, {0, 0, -1}), P0, P1, P2, &h));  // beyond the hypotenuse
-  EXPECT_FALSE(intersect_triangle(make_ray({-0.1f, 0.5f, 1}, {0, 0, -1}), P0, P1, P2, &h)); // left of x = 0
-  EXPECT_FALSE(intersect_triangle(make_ray({0.5f, -0.1f, 1}, {0, 0, -1}), P0, P1, P2, &h)); // below y = 0
-  EXPECT_FALSE(intersect_triangle(make_ray({0.2f, 0.2f, 1}, {0, 0, 1}), P0, P1, P2, &h));   // pointing away
-  EXPECT_FALSE(intersect_triangle(make_ray({-1, 0.2f, 0}, {1, 0, 0}), P0, P1, P2, &h));     // in its plane, edge-on
+  EXPECT_FALSE(intersect_triangle(make_ray({0.6f, 0.6f, 1}, {0, 0, -1}), P0, P1, P2, &h));   // beyond the hypotenuse
+  EXPECT_FALSE(intersect_triangle(make_ray({-0.1f, 0.5f, 1}, {0, 0, -1}), P0, P1, P2, &h));  // left of x = 0
+  EXPECT_FALSE(intersect_triangle(make_ray({0.5f, -0.1f, 1}, {0, 0, -1}), P0, P1, P2, &h));  // below y = 0
+  EXPECT_FALSE(intersect_triangle(make_ray({0.2f, 0.2f, 1}, {0, 0, 1}), P0, P1, P2, &h));    // pointing away
+  EXPECT_FALSE(intersect_triangle(make_ray({-1, 0.2f, 0}, {1, 0, 0}), P0, P1, P2, &h));      // in its plane, edge-on
   EXPECT_EQ(h.t, 77.f) << "a miss must not write the hit";
 }
 
@@ -191,7 +191,9 @@ TEST(TriangleIntersect, TDistanceMatchesDoubleReference) {
   std::uniform_real_distribution<float> s(-1.f, 1.f), u(0.f, 1.f);
   for (int i = 0; i < 5000; ++i) {
     vec3 a(s(rng), s(rng), s(rng)), b(s(rng), s(rng), s(rng)), c(s(rng), s(rng), s(rng));
-    a *= 10.f; b *= 10.f; c *= 10.f;
+    a *= 10.f;
+    b *= 10.f;
+    c *= 10.f;
     float w1 = 0.05f + 0.9f * u(rng), w2 = (0.05f + 0.9f * u(rng)) * (1.f - w1);
     vec3 target = (1.f - w1 - w2) * a + w1 * b + w2 * c;
     vec3 o = vec3(s(rng), s(rng), s(rng)) * 30.f;
