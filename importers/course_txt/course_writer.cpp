@@ -101,10 +101,7 @@ class CourseBuilder {
       fs::create_directories(d, ec);
       if (ec) throw Error(d + ": cannot create folder: " + ec.message());
     }
-    SaveResult r;
-    r.files = out_.commit();
-    r.stored_triangles = stored_triangles_;
-    return r;
+    return SaveResult{out_.commit(), stored_triangles_};
   }
 
  private:

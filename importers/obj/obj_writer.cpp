@@ -54,10 +54,7 @@ class ObjBuilder {
     out_.add(path_, obj.str());
     if (!used_materials_.empty()) out_.add(out_.beside(mtl), write_mtl());
     report();
-    SaveResult r;
-    r.files = out_.commit();
-    r.stored_triangles = stored_triangles_;
-    return r;
+    return SaveResult{out_.commit(), stored_triangles_};
   }
 
  private:
