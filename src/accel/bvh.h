@@ -47,11 +47,16 @@ struct BvhBuildOptions {
 // Builds a BVH; primitives with empty bounds are left out. Deterministic.
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, const BvhBuildOptions& options = {});
 
-// Depth-first traversal for the closest hit. `leaf(first, count, tmax)` tests
-// primitives [first, first+count) of bvh.primitives, may lower tmax, and
-// returns whether it did. Returns whether any leaf reported a hit.
-template <class LeafFn>
-inline bool traverse_closest(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn&& leaf) {
+enum class BvhQuery {
+  closest_hit,  // near child first; leaves may lower tmax; returns whether any leaf reported a hit
+  any_hit,      // children in index order; stops at the first leaf that reports a hit (shadow rays)
+};
+
+// Depth-first traversal with a small explicit stack. `leaf(first, count, tmax)`
+// tests primitives [first, first+count) of bvh.primitives with
+// ray.tmin < t < tmax, may lower tmax (closest_hit), and returns whether it hit.
+template <BvhQuery query, class LeafFn>
+inline bool traverse_bvh(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn&& leaf) {
   if (bvh.nodes.empty()) return false;
   const RaySlabs slabs = make_ray_slabs(ray);
   const BvhNode* nodes = bvh.nodes.data();
@@ -66,8 +71,11 @@ inline bool traverse_closest(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn
     // Tested on pop, so that a closer hit found meanwhile prunes the node.
     if (!slab_hit(n.lo, n.hi, slabs, ray.tmin, tmax, &t_enter)) continue;
     if (n.count > 0) {
-      hit |= leaf(n.offset, n.count, tmax);
-    } else if (slabs.dir_is_neg[n.axis]) {  // the right child is nearer
+      if (leaf(n.offset, n.count, tmax)) {
+        if constexpr (query == BvhQuery::any_hit) return true;
+        hit = true;
+      }
+    } else if (query == BvhQuery::closest_hit && slabs.dir_is_neg[n.axis]) {  // the right child is nearer
       stack[top++] = index + 1;
       stack[top++] = n.offset;
     } else {
@@ -76,30 +84,6 @@ inline bool traverse_closest(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn
     }
   }
   return hit;
-}
-
-// Any-hit traversal: stops at the first leaf that reports a hit (shadow rays).
-template <class LeafFn>
-inline bool traverse_any(const Bvh& bvh, const Ray& ray, LeafFn&& leaf) {
-  if (bvh.nodes.empty()) return false;
-  const RaySlabs slabs = make_ray_slabs(ray);
-  const BvhNode* nodes = bvh.nodes.data();
-  uint32_t stack[bvh_stack_size];
-  int top = 0;
-  stack[top++] = 0;
-  float t_enter;
-  while (top > 0) {
-    const BvhNode& n = nodes[stack[--top]];
-    if (!slab_hit(n.lo, n.hi, slabs, ray.tmin, ray.tmax, &t_enter)) continue;
-    if (n.count > 0) {
-      if (leaf(n.offset, n.count)) return true;
-    } else {
-      uint32_t index = uint32_t(&n - nodes);
-      stack[top++] = n.offset;
-      stack[top++] = index + 1;
-    }
-  }
-  return false;
 }
 
 }  // namespace rayform

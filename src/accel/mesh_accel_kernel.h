@@ -18,6 +18,7 @@
 #include "geometry/ray.h"
 
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 
 #ifndef RAYFORM_MESH_KERNEL_FLAVOUR
@@ -38,17 +39,22 @@ inline int children_hit(const WideBvhNode& n, const NodeRay& nr, float tmax, flo
   return node_hits<Oct>(n, nr, tmax, t_enter);
 }
 
-// Closest hit: nearest child first, the others pushed with their entry
-// distance and skipped when popped behind the closest hit found meanwhile.
-template <int Oct>
-inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, float& tmax, MeshHit* hit) {
+// One traversal, two queries. closest_hit: nearest child first, the others
+// pushed with their entry distance and skipped when popped behind the closest
+// hit found meanwhile; *hit set when it returns true. any_hit: children in
+// index order, stops at the first hit (hit unused).
+template <int Oct, BvhQuery query>
+inline bool traverse_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, float& tmax, MeshHit* hit) {
+  constexpr bool any_hit = query == BvhQuery::any_hit;
   const WideBvhNode* nodes = m.bvh.nodes.data();
   const TrianglePacket* packets = m.packets.data();
   struct Entry {
     uint32_t ref;
     float t;
   };
-  Entry stack[stack_size];
+  // any_hit never compares entry distances, so its stack holds references only.
+  using StackEntry = std::conditional_t<any_hit, uint32_t, Entry>;
+  StackEntry stack[stack_size];
   int top = 0;
   uint32_t ref = 0;
   bool found = false;
@@ -61,44 +67,55 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
       int mask = children_hit<Oct>(n, nr, tmax, tn);
       if (mask != 0) {
         int i = pop_lowest_bit(mask);
-        if (mask == 0) {  // one child hit: go on without the stack
-          ref = n.child[i];
-          continue;
-        }
-        int j = pop_lowest_bit(mask);
-        if (mask == 0) {  // two: the nearer first
-          if (tn[j] < tn[i]) std::swap(i, j);
-          prefetch_child(nodes, packets, n.child[j]);
-          stack[top++] = {n.child[j], tn[j]};
-          ref = n.child[i];
-          continue;
-        }
-        // More: push all, sorted so that the nearest is on top, and pop it.
-        const int base = top;
-        stack[top++] = {n.child[i], tn[i]};
-        stack[top++] = {n.child[j], tn[j]};
-        while (mask) {
-          int k = pop_lowest_bit(mask);
-          stack[top++] = {n.child[k], tn[k]};
-        }
-        for (int a = base; a < top - 1; ++a) prefetch_child(nodes, packets, stack[a].ref);
-        for (int a = base + 1; a < top; ++a) {  // insertion sort, descending t
-          Entry e = stack[a];
-          int b = a;
-          while (b > base && stack[b - 1].t < e.t) {
-            stack[b] = stack[b - 1];
-            --b;
+        if constexpr (any_hit) {
+          while (mask) {
+            int k = pop_lowest_bit(mask);
+            stack[top++] = n.child[k];
+            prefetch_child(nodes, packets, n.child[k]);
           }
-          stack[b] = e;
+          ref = n.child[i];
+          continue;
+        } else {
+          if (mask == 0) {  // one child hit: go on without the stack
+            ref = n.child[i];
+            continue;
+          }
+          int j = pop_lowest_bit(mask);
+          if (mask == 0) {  // two: the nearer first
+            if (tn[j] < tn[i]) std::swap(i, j);
+            prefetch_child(nodes, packets, n.child[j]);
+            stack[top++] = {n.child[j], tn[j]};
+            ref = n.child[i];
+            continue;
+          }
+          // More: push all, sorted so that the nearest is on top, and pop it.
+          const int base = top;
+          stack[top++] = {n.child[i], tn[i]};
+          stack[top++] = {n.child[j], tn[j]};
+          while (mask) {
+            int k = pop_lowest_bit(mask);
+            stack[top++] = {n.child[k], tn[k]};
+          }
+          for (int a = base; a < top - 1; ++a) prefetch_child(nodes, packets, stack[a].ref);
+          for (int a = base + 1; a < top; ++a) {  // insertion sort, descending t
+            Entry e = stack[a];
+            int b = a;
+            while (b > base && stack[b - 1].t < e.t) {
+              stack[b] = stack[b - 1];
+              --b;
+            }
+            stack[b] = e;
+          }
+          ref = stack[--top].ref;
+          continue;
         }
-        ref = stack[--top].ref;
-        continue;
       }
     } else {
       const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
       for (uint32_t k = first; k < first + count; ++k) {
         PacketHits h = intersect_packet(packets[k], tr, tmax);
         if (!h.mask) continue;
+        if constexpr (any_hit) return true;
         alignas(16) float ts[4];
         simd::store(ts, h.t);
         int rest = h.mask;
@@ -121,86 +138,52 @@ inline bool intersect_octant(const MeshAccel& m, const NodeRay& nr, const TriRay
         found = true;
       }
     }
-    // Pop the next entry still in front of the closest hit.
-    for (;;) {
-      if (top == 0) {
-        if (found) *hit = {hit_id, hit_e[0] * hit_inv, hit_e[1] * hit_inv, hit_e[2] * hit_inv};
-        return found;
-      }
-      const Entry& e = stack[--top];
-      if (e.t <= tmax) {
-        ref = e.ref;
-        break;
+    // Pop the next entry (closest_hit: the next still in front of the closest hit).
+    if constexpr (any_hit) {
+      if (top == 0) return false;
+      ref = stack[--top];
+    } else {
+      for (;;) {
+        if (top == 0) {
+          if (found) *hit = {hit_id, hit_e[0] * hit_inv, hit_e[1] * hit_inv, hit_e[2] * hit_inv};
+          return found;
+        }
+        const Entry& e = stack[--top];
+        if (e.t <= tmax) {
+          ref = e.ref;
+          break;
+        }
       }
     }
   }
 }
 
-// Any hit: children in index order, stops at the first hit.
-template <int Oct>
-inline bool occluded_octant(const MeshAccel& m, const NodeRay& nr, const TriRay& tr, const float tmax) {
-  const WideBvhNode* nodes = m.bvh.nodes.data();
-  const TrianglePacket* packets = m.packets.data();
-  uint32_t stack[stack_size];
-  int top = 0;
-  uint32_t ref = 0;
-  for (;;) {
-    if (!WideBvhNode::is_leaf(ref)) {
-      const WideBvhNode& n = nodes[ref];
-      alignas(32) float tn[WideBvhNode::width];
-      int mask = children_hit<Oct>(n, nr, tmax, tn);
-      if (mask != 0) {
-        int i = pop_lowest_bit(mask);
-        while (mask) {
-          int k = pop_lowest_bit(mask);
-          stack[top++] = n.child[k];
-          prefetch_child(nodes, packets, n.child[k]);
-        }
-        ref = n.child[i];
-        continue;
-      }
-    } else {
-      const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
-      for (uint32_t k = first; k < first + count; ++k)
-        if (intersect_packet(packets[k], tr, tmax).mask) return true;
-    }
-    if (top == 0) return false;
-    ref = stack[--top];
+// The ray's octant as a template argument (constant plane rows in the node test).
+template <BvhQuery query>
+inline bool traverse(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hit) {
+  if (m.bvh.nodes.empty()) return false;
+  const RaySlabs s = make_ray_slabs(ray);
+  const NodeRay nr(s, ray.tmin);
+  const TriRay tr(ray);
+  switch (octant(s)) {
+    case 0: return traverse_octant<0, query>(m, nr, tr, tmax, hit);
+    case 1: return traverse_octant<1, query>(m, nr, tr, tmax, hit);
+    case 2: return traverse_octant<2, query>(m, nr, tr, tmax, hit);
+    case 3: return traverse_octant<3, query>(m, nr, tr, tmax, hit);
+    case 4: return traverse_octant<4, query>(m, nr, tr, tmax, hit);
+    case 5: return traverse_octant<5, query>(m, nr, tr, tmax, hit);
+    case 6: return traverse_octant<6, query>(m, nr, tr, tmax, hit);
+    default: return traverse_octant<7, query>(m, nr, tr, tmax, hit);
   }
 }
 
 inline bool intersect(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hit) {
-  if (m.bvh.nodes.empty()) return false;
-  const RaySlabs s = make_ray_slabs(ray);
-  const NodeRay nr(s, ray.tmin);
-  const TriRay tr(ray);
-  switch (octant(s)) {
-    case 0: return intersect_octant<0>(m, nr, tr, tmax, hit);
-    case 1: return intersect_octant<1>(m, nr, tr, tmax, hit);
-    case 2: return intersect_octant<2>(m, nr, tr, tmax, hit);
-    case 3: return intersect_octant<3>(m, nr, tr, tmax, hit);
-    case 4: return intersect_octant<4>(m, nr, tr, tmax, hit);
-    case 5: return intersect_octant<5>(m, nr, tr, tmax, hit);
-    case 6: return intersect_octant<6>(m, nr, tr, tmax, hit);
-    default: return intersect_octant<7>(m, nr, tr, tmax, hit);
-  }
+  return traverse<BvhQuery::closest_hit>(m, ray, tmax, hit);
 }
 
 inline bool occluded(const MeshAccel& m, const Ray& ray) {
-  if (m.bvh.nodes.empty()) return false;
-  const RaySlabs s = make_ray_slabs(ray);
-  const NodeRay nr(s, ray.tmin);
-  const TriRay tr(ray);
-  switch (octant(s)) {
-    case 0: return occluded_octant<0>(m, nr, tr, ray.tmax);
-    case 1: return occluded_octant<1>(m, nr, tr, ray.tmax);
-    case 2: return occluded_octant<2>(m, nr, tr, ray.tmax);
-    case 3: return occluded_octant<3>(m, nr, tr, ray.tmax);
-    case 4: return occluded_octant<4>(m, nr, tr, ray.tmax);
-    case 5: return occluded_octant<5>(m, nr, tr, ray.tmax);
-    case 6: return occluded_octant<6>(m, nr, tr, ray.tmax);
-    default: return occluded_octant<7>(m, nr, tr, ray.tmax);
-  }
+  float tmax = ray.tmax;
+  return traverse<BvhQuery::any_hit>(m, ray, tmax, nullptr);
 }
 
 }  // namespace RAYFORM_MESH_KERNEL_FLAVOUR

@@ -70,7 +70,7 @@ inline bool intersect_instance(const PreparedScene& p, uint32_t index, const Ray
 // Closest hit with ray.tmin < t < ray.tmax.
 inline bool intersect_scene(const PreparedScene& p, const Ray& ray, Hit* hit) {
   float tmax = ray.tmax;
-  bool found = traverse_closest(p.top, ray, tmax, [&](uint32_t first, uint32_t count, float& t_max) {
+  bool found = traverse_bvh<BvhQuery::closest_hit>(p.top, ray, tmax, [&](uint32_t first, uint32_t count, float& t_max) {
     bool any = false;
     for (uint32_t i = first; i < first + count; ++i) any |= intersect_instance(p, p.top.primitives[i], ray, t_max, hit);
     return any;
@@ -90,7 +90,8 @@ inline bool occluded(const PreparedScene& p, const Ray& ray) {
   };
   for (uint32_t i : p.plane_instances)
     if (blocks(i)) return true;
-  return traverse_any(p.top, ray, [&](uint32_t first, uint32_t count) {
+  float tmax = ray.tmax;
+  return traverse_bvh<BvhQuery::any_hit>(p.top, ray, tmax, [&](uint32_t first, uint32_t count, float&) {
     for (uint32_t i = first; i < first + count; ++i)
       if (blocks(p.top.primitives[i])) return true;
     return false;
