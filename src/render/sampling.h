@@ -3,6 +3,7 @@
 // the thread count), and the reconstruction filters that weight them.
 #pragma once
 
+#include "math/hash.h"
 #include "math/math.h"
 
 #include <cmath>
@@ -17,13 +18,7 @@ enum class PixelFilter : uint8_t {
 
 // Counter-based hash to [0, 1): the same (pixel, sample, dim) always gives the same number.
 inline float sample_random(uint32_t pixel, uint32_t sample, uint32_t dim) {
-  uint32_t x = pixel * 0x9E3779B9u ^ (sample + 0x7F4A7C15u) * 0x85EBCA6Bu ^ (dim + 1u) * 0xC2B2AE35u;
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return float(x >> 8) * (1.f / 16777216.f);
+  return hash_to_unit(pixel * 0x9E3779B9u ^ (sample + 0x7F4A7C15u) * 0x85EBCA6Bu ^ (dim + 1u) * 0xC2B2AE35u);
 }
 
 struct PixelSampleOffset {

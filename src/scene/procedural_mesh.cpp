@@ -1,5 +1,7 @@
 #include "scene/procedural_mesh.h"
 
+#include "math/hash.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -50,18 +52,6 @@ Mesh make_cube() {
   return m;
 }
 
-namespace {
-// Small deterministic hash to [0, 1).
-float hash01(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return float(x >> 8) * (1.f / 16777216.f);
-}
-}  // namespace
-
 Mesh make_bumpy_torus(size_t target_triangles, uint32_t seed) {
   // rings * segments * 2 ~ target, with segments ~ 3 * rings (the tube is thinner).
   size_t rings = std::max<size_t>(3, size_t(std::sqrt(double(target_triangles) / 6.0)));
@@ -70,16 +60,16 @@ Mesh make_bumpy_torus(size_t target_triangles, uint32_t seed) {
   // A few random low-frequency bumps.
   float phase[4], freq[4];
   for (int k = 0; k < 4; ++k) {
-    phase[k] = 6.2831853f * hash01(seed * 4 + k);
-    freq[k] = 2.f + std::floor(6.f * hash01(seed * 4 + k + 100));
+    phase[k] = (2.f * pi) * hash_to_unit(seed * 4 + k);
+    freq[k] = 2.f + std::floor(6.f * hash_to_unit(seed * 4 + k + 100));
   }
   Mesh m;
   m.name = "bumpy_torus";
   m.positions.resize(rings * segments);
   for (size_t i = 0; i < segments; ++i) {  // around the main circle
-    float u = 6.2831853f * float(i) / float(segments);
+    float u = (2.f * pi) * float(i) / float(segments);
     for (size_t j = 0; j < rings; ++j) {  // around the tube
-      float v = 6.2831853f * float(j) / float(rings);
+      float v = (2.f * pi) * float(j) / float(rings);
       float bump = 0.f;
       for (int k = 0; k < 4; ++k)
         bump += 0.02f * std::sin(freq[k] * (k % 2 ? u : v) + phase[k] + float(k) * u * v * 0.1f);
