@@ -14,42 +14,32 @@
 
 namespace rayform {
 
-// Faces in the order of Background::cube_map.
+// Faces in the order of Background::cube_map: face = 2 * major axis + (1 if
+// the major component is negative).
 enum CubeFace { cube_right = 0, cube_left, cube_up, cube_down, cube_front, cube_back };
+
+// Per face: the axes giving s and t, and whether each is flipped (1 - x).
+struct CubeFaceLayout {
+  int s_axis, t_axis;
+  bool flip_s, flip_t;
+};
+inline constexpr CubeFaceLayout cube_face_layouts[6] = {
+    {2, 1, false, false},  // right
+    {2, 1, false, true},   // left
+    {0, 2, false, false},  // up
+    {0, 2, true, true},    // down
+    {0, 1, true, false},   // front
+    {0, 1, false, true},   // back
+};
 
 inline vec3 sample_cube_map(const std::vector<TextureImage>& faces, vec3 direction) {
   vec3 d = glm::normalize(direction);
   vec3 a = glm::abs(d);
-  int face;
-  vec2 uv;
-  if (a.x >= a.y && a.x >= a.z) {
-    float s = (d.z / d.x + 1.f) * 0.5f, t = (d.y / d.x + 1.f) * 0.5f;
-    if (d.x > 0.f) {
-      face = cube_right;
-      uv = vec2(s, t);
-    } else {
-      face = cube_left;
-      uv = vec2(s, 1.f - t);
-    }
-  } else if (a.y >= a.z) {
-    float s = (d.x / d.y + 1.f) * 0.5f, t = (d.z / d.y + 1.f) * 0.5f;
-    if (d.y > 0.f) {
-      face = cube_up;
-      uv = vec2(s, t);
-    } else {
-      face = cube_down;
-      uv = vec2(1.f - s, 1.f - t);
-    }
-  } else {
-    float s = (d.x / d.z + 1.f) * 0.5f, t = (d.y / d.z + 1.f) * 0.5f;
-    if (d.z > 0.f) {
-      face = cube_front;
-      uv = vec2(1.f - s, t);
-    } else {
-      face = cube_back;
-      uv = vec2(s, 1.f - t);
-    }
-  }
+  const int major = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+  const int face = 2 * major + (d[major] > 0.f ? 0 : 1);
+  const CubeFaceLayout& layout = cube_face_layouts[face];
+  const float s = (d[layout.s_axis] / d[major] + 1.f) * 0.5f, t = (d[layout.t_axis] / d[major] + 1.f) * 0.5f;
+  const vec2 uv(layout.flip_s ? 1.f - s : s, layout.flip_t ? 1.f - t : t);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return vec3(0.f);  // zero or NaN direction
   return vec3(sample_texture(faces[face], uv));
 }
