@@ -67,11 +67,37 @@ class CourseParser {
   void parse_block(const Token& opener, const char* expected_keys, Fn&& on_key) {
     tokens_.expect("{", opener.text);
     for (;;) {
-      Token k =
-          tokens_.next_or_fail(std::string("'}' to close ") + opener.text + " opened at " + tokens_.line_col(opener));
+      Token k = tokens_.next_or_fail(close_expected(opener));
       if (k.text == "}") return;
       if (!on_key(k)) tokens_.fail(k, std::string("expected one of ") + expected_keys + " or '}' in " + opener.text);
     }
+  }
+
+  std::string close_expected(const Token& opener) const {
+    return "'}' to close " + opener.text + " opened at " + tokens_.line_col(opener);
+  }
+
+  // Reads `{ count_key n item... }`. `on_token(t)` parses what starts at token
+  // t and returns whether it was one of the n items (false for a modifier such
+  // as MaterialIndex). Returns n; fails at the first item beyond n, or at n
+  // when fewer follow.
+  template <class Fn>
+  int parse_counted_list(const Token& opener, const std::string& count_key, const std::string& items, Fn&& on_token) {
+    tokens_.expect("{", opener.text);
+    tokens_.expect(count_key, opener.text);
+    Token count_token = tokens_.peek_token();
+    const int n = tokens_.count();
+    int found = 0;
+    for (;;) {
+      Token t = tokens_.next_or_fail(close_expected(opener));
+      if (t.text == "}") break;
+      if (on_token(t) && ++found > n)
+        tokens_.fail(t, "more " + items + " than " + count_key + " " + std::to_string(n) + " declares");
+    }
+    if (found != n)
+      tokens_.fail(count_token,
+                   count_key + " is " + std::to_string(n) + " but " + std::to_string(found) + " " + items + " follow");
+    return n;
   }
 
   void parse_camera() {
@@ -100,14 +126,8 @@ class CourseParser {
 
   void parse_lights() {
     Token opener = tokens_.last();
-    tokens_.expect("{", "Lights");
-    tokens_.expect("numLights", "Lights");
-    Token count_token = tokens_.peek_token();
-    int n = tokens_.count();
     std::vector<Light> lights;
-    for (;;) {
-      Token t = tokens_.next_or_fail("'}' to close Lights opened at " + tokens_.line_col(opener));
-      if (t.text == "}") break;
+    const int n = parse_counted_list(opener, "numLights", "lights", [&](const Token& t) {
       Light l;
       if (t.text == "DirectionalLight") {
         l.kind = Light::Kind::directional;
@@ -135,11 +155,8 @@ class CourseParser {
         tokens_.fail(t, "expected DirectionalLight, PointLight or '}' in Lights");
       }
       lights.push_back(l);
-      if (int(lights.size()) > n) tokens_.fail(t, "more lights than numLights " + std::to_string(n) + " declares");
-    }
-    if (int(lights.size()) != n)
-      tokens_.fail(count_token,
-                   "numLights is " + std::to_string(n) + " but " + std::to_string(lights.size()) + " lights follow");
+      return true;
+    });
     scene_.lights = std::move(lights);
     declared_no_lights_ = n == 0;
   }
@@ -177,14 +194,8 @@ class CourseParser {
 
   void parse_materials() {
     Token opener = tokens_.last();
-    tokens_.expect("{", "Materials");
-    tokens_.expect("numMaterials", "Materials");
-    Token count_token = tokens_.peek_token();
-    int n = tokens_.count();
     std::vector<Material> mats;
-    for (;;) {
-      Token t = tokens_.next_or_fail("'}' to close Materials opened at " + tokens_.line_col(opener));
-      if (t.text == "}") break;
+    parse_counted_list(opener, "numMaterials", "materials", [&](const Token& t) {
       if (t.text != "Material" && t.text != "PhongMaterial")
         tokens_.fail(t, "expected Material, PhongMaterial or '}' in Materials");
       Material m;
@@ -201,11 +212,8 @@ class CourseParser {
       });
       m.name = "material" + std::to_string(mats.size());
       mats.push_back(m);
-      if (int(mats.size()) > n) tokens_.fail(t, "more materials than numMaterials " + std::to_string(n) + " declares");
-    }
-    if (int(mats.size()) != n)
-      tokens_.fail(count_token, "numMaterials is " + std::to_string(n) + " but " + std::to_string(mats.size()) +
-                                    " materials follow");
+      return true;
+    });
     scene_.materials = std::move(mats);
   }
 
@@ -254,30 +262,20 @@ class CourseParser {
 
   int parse_group(const Token& opener) {
     enter_level(opener);
-    tokens_.expect("{", "Group");
-    tokens_.expect("numObjects", "Group");
-    Token count_token = tokens_.peek_token();
-    int n = tokens_.count();
     Node g;
     g.kind = Node::Kind::group;
     g.name = "group";
     std::vector<int> children;
-    for (;;) {
-      Token t = tokens_.next_or_fail("'}' to close Group opened at " + tokens_.line_col(opener));
-      if (t.text == "}") break;
+    parse_counted_list(opener, "numObjects", "objects", [&](const Token& t) {
       if (t.text == "MaterialIndex") {
         Token v = tokens_.peek_token();
-        int k = tokens_.count();
-        current_material_ = k;
+        current_material_ = tokens_.count();
         current_material_token_ = v;
-        continue;
+        return false;
       }
       children.push_back(parse_object(t));
-      if (int(children.size()) > n) tokens_.fail(t, "more objects than numObjects " + std::to_string(n) + " declares");
-    }
-    if (int(children.size()) != n)
-      tokens_.fail(count_token, "numObjects is " + std::to_string(n) + " but the group holds " +
-                                    std::to_string(children.size()) + " objects");
+      return true;
+    });
     g.children = std::move(children);
     --depth_;
     return add_node(std::move(g));
@@ -366,7 +364,7 @@ class CourseParser {
     mat4 m(1.f);
     int child = invalid;
     for (;;) {
-      Token t = tokens_.next_or_fail("'}' to close Transform opened at " + tokens_.line_col(opener));
+      Token t = tokens_.next_or_fail(close_expected(opener));
       if (t.text == "}") break;
       // Right-multiplied: the first listed acts last on the object.
       if (t.text == "Scale") m = glm::scale(m, tokens_.vec3_value());
