@@ -98,34 +98,26 @@ float gltf_normalize_integer(float v, int ct) {
   return v;
 }
 
+namespace {
+// The component at p as a float; p need not be aligned. (glTF data is
+// little-endian, like every target rayform builds for.)
+template <class T>
+float unaligned_component(const unsigned char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return float(v);
+}
+}  // namespace
+
 float gltf_component_value(const unsigned char* p, int ct, bool normalized) {
   float value = 0.f;
   switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); return value;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = float(p[0]); break;
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      int8_t v;
-      std::memcpy(&v, p, 1);
-      value = float(v);
-      break;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      value = float(v);
-      break;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      value = float(v);
-      break;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return float(v);
-    }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return unaligned_component<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return unaligned_component<uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = unaligned_component<uint8_t>(p); break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE: value = unaligned_component<int8_t>(p); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: value = unaligned_component<uint16_t>(p); break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: value = unaligned_component<int16_t>(p); break;
   }
   return normalized ? gltf_normalize_integer(value, ct) : value;
 }
