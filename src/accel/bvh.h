@@ -58,6 +58,9 @@ enum class BvhQuery {
 template <BvhQuery query, class LeafFn>
 inline bool traverse_bvh(const Bvh& bvh, const Ray& ray, float& tmax, LeafFn&& leaf) {
   if (bvh.nodes.empty()) return false;
+  // A root leaf (a handful of primitives, e.g. one mesh): its box test would
+  // only repeat theirs.
+  if (bvh.nodes[0].count > 0) return leaf(bvh.nodes[0].offset, bvh.nodes[0].count, tmax);
   const RaySlabs slabs = make_ray_slabs(ray);
   const BvhNode* nodes = bvh.nodes.data();
   uint32_t stack[bvh_stack_size];
