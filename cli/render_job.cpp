@@ -92,10 +92,17 @@ void run_render_job(const RenderJob& job) {
   PreparedScene prepared = prepare_scene(loaded.scene);
   double prepare_s = seconds_since(t_prepare);
 
+  bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
+  bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
+  bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
+              (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
   RenderOptions ro = job.render;
   ro.depth = job.depth.has_value();
   ro.normals = !job.normals.empty();
   ro.albedo = !job.albedo.empty();
+  // 8-bit files get 8-bit values straight from the render loop.
+  if (is_8bit_image_path(job.output) && (job.albedo.empty() || is_8bit_image_path(job.albedo)))
+    ro.color_format = srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
   Progress progress("rendering", job.quiet);
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
   auto t_render = clock::now();
@@ -107,24 +114,24 @@ void run_render_job(const RenderJob& job) {
               << render_path_name(prepared, ro) << " path, " << ro.width << "x" << ro.height << ", " << ro.spp
               << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
 
-  bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
-  bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
-  bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
-              (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
-  if (srgb) {
+  if (srgb && ro.color_format == ColorFormat::linear_float) {
     encode_srgb(result.color);
     if (!job.albedo.empty()) encode_srgb(result.albedo);
   }
   // All outputs appear together or not at all.
+  OutputFiles files(job.output);
   std::vector<std::pair<std::string, Image>> outputs;
-  outputs.emplace_back(job.output, std::move(result.color));
+  if (ro.color_format == ColorFormat::linear_float) outputs.emplace_back(job.output, std::move(result.color));
+  else files.add_written(job.output, write_image8_temporary(job.output, result.color8));
   if (job.depth)
     outputs.emplace_back(job.depth->file, depth_image(result, job.depth->min, job.depth->max,
                                                       course_2019 ? DepthStyle::near_black : DepthStyle::near_white));
   if (!job.normals.empty())
     outputs.emplace_back(job.normals, normals_image(result, course_2012 ? NormalStyle::absolute : NormalStyle::offset));
-  if (!job.albedo.empty()) outputs.emplace_back(job.albedo, std::move(result.albedo));
-  OutputFiles files(job.output);
+  if (!job.albedo.empty()) {
+    if (ro.color_format == ColorFormat::linear_float) outputs.emplace_back(job.albedo, std::move(result.albedo));
+    else files.add_written(job.albedo, write_image8_temporary(job.albedo, result.albedo8));
+  }
   for (const auto& [path, image] : outputs) files.add_written(path, write_image_temporary(path, image));
   files.commit();
 }

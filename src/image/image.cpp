@@ -34,28 +34,51 @@ bool is_writable_image_path(const std::string& path) {
   return stb_writes(ext) || oiio_can_write(path);
 }
 
-std::string write_image_temporary(const std::string& path, const Image& image) {
-  std::string ext = lower_extension(path);
-  bool use_stb = stb_writes(ext);
-  if (!use_stb && (ext.empty() || !oiio_can_write(path)))
-    throw Error(path + ": cannot write images of this type (unknown extension '" + ext + "')");
-  if (image.width <= 0 || image.height <= 0 || image.channels <= 0) throw Error(path + ": cannot write an empty image");
-  // Beside the target under a temporary name (extension kept last for the
-  // writers that look at it), so that the rename is atomic.
+namespace {
+// Beside the target under a temporary name (extension kept last for the
+// writers that look at it), so that the rename is atomic.
+std::string temporary_path(const std::string& path) {
   fs::path target(path);
   std::string tmp_name = ".";  // (built by appends: GCC 12 warns falsely on "." + string)
   tmp_name.append(target.stem().string())
       .append(".tmp")
       .append(std::to_string(getpid()))
       .append(target.extension().string());
-  fs::path tmp = target.parent_path() / tmp_name;
+  return (target.parent_path() / tmp_name).string();
+}
+
+// Runs `write(temporary)`; on failure removes the temporary and throws.
+template <class WriteFn>
+std::string write_temporary(const std::string& path, WriteFn&& write) {
+  const std::string tmp = temporary_path(path);
   std::string error;
-  bool ok = use_stb ? stb_write(tmp.string(), ext, image, &error) : oiio_write(path, tmp.string(), image, &error);
-  if (!ok) {
-    discard_temporary(tmp.string());
+  if (!write(tmp, &error)) {
+    discard_temporary(tmp);
     throw Error(path + ": cannot write image" + (error.empty() ? "" : ": " + error));
   }
-  return tmp.string();
+  return tmp;
+}
+}  // namespace
+
+std::string write_image_temporary(const std::string& path, const Image& image) {
+  std::string ext = lower_extension(path);
+  bool use_stb = stb_writes(ext);
+  if (!use_stb && (ext.empty() || !oiio_can_write(path)))
+    throw Error(path + ": cannot write images of this type (unknown extension '" + ext + "')");
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0) throw Error(path + ": cannot write an empty image");
+  return write_temporary(path, [&](const std::string& tmp, std::string* error) {
+    return use_stb ? stb_write(tmp, ext, image, error) : oiio_write(path, tmp, image, error);
+  });
+}
+
+bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_extension(path)); }
+
+std::string write_image8_temporary(const std::string& path, const Image8& image) {
+  std::string ext = lower_extension(path);
+  if (!stb_writes_8bit(ext)) throw Error(path + ": not an 8-bit image type (bmp, png, tga, jpg)");
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0) throw Error(path + ": cannot write an empty image");
+  return write_temporary(
+      path, [&](const std::string& tmp, std::string* error) { return stb_write8(tmp, ext, image, error); });
 }
 
 void commit_temporary(const std::string& temporary, const std::string& path) {

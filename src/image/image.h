@@ -46,6 +46,10 @@ void write_image(const std::string& path, const Image& image);
 // leaving nothing behind), then rename them all. discard_temporary removes a
 // temporary that will not be committed.
 std::string write_image_temporary(const std::string& path, const Image& image);
+// The same for 8-bit pixels, stored as they are, to a path for which
+// is_8bit_image_path holds (bmp, png, tga, jpg).
+std::string write_image8_temporary(const std::string& path, const Image8& image);
+bool is_8bit_image_path(const std::string& path);
 void commit_temporary(const std::string& temporary, const std::string& path);
 void discard_temporary(const std::string& temporary);
 

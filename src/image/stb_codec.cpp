@@ -1,5 +1,7 @@
 #include "image/stb_codec.h"
 
+#include "image/quantize.h"
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -66,25 +68,31 @@ bool stb_read8(const std::string& path, Image8* image, std::string* error) {
   return true;
 }
 
-bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
+bool stb_writes_8bit(const std::string& ext) {
+  return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg";
+}
+
+bool stb_write8(const std::string& path, const std::string& ext, const Image8& img, std::string* error) {
   const int w = img.width, h = img.height, c = img.channels;
+  const unsigned char* q = img.pixels.data();
   int ok = 0;
-  if (ext == ".hdr") {
-    ok = stbi_write_hdr(path.c_str(), w, h, c, img.pixels.data());
-  } else {
-    std::vector<unsigned char> q(img.pixels.size());
-    for (size_t i = 0; i < q.size(); ++i) {
-      float v = img.pixels[i];
-      v = std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f);
-      q[i] = (unsigned char)std::min(255.f, std::floor(v * 255.f));
-    }
-    if (ext == ".png") ok = stbi_write_png(path.c_str(), w, h, c, q.data(), w * c);
-    else if (ext == ".bmp") ok = stbi_write_bmp(path.c_str(), w, h, c, q.data());
-    else if (ext == ".tga") ok = stbi_write_tga(path.c_str(), w, h, c, q.data());
-    else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), w, h, c, q.data(), 95);
-  }
+  if (ext == ".png") ok = stbi_write_png(path.c_str(), w, h, c, q, w * c);
+  else if (ext == ".bmp") ok = stbi_write_bmp(path.c_str(), w, h, c, q);
+  else if (ext == ".tga") ok = stbi_write_tga(path.c_str(), w, h, c, q);
+  else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), w, h, c, q, 95);
   if (!ok) *error = "cannot write the file (folder missing or not writable?)";
   return ok != 0;
+}
+
+bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
+  if (ext == ".hdr") {
+    if (stbi_write_hdr(path.c_str(), img.width, img.height, img.channels, img.pixels.data())) return true;
+    *error = "cannot write the file (folder missing or not writable?)";
+    return false;
+  }
+  Image8 q{img.width, img.height, img.channels, std::vector<unsigned char>(img.pixels.size())};
+  for (size_t i = 0; i < q.pixels.size(); ++i) q.pixels[i] = quantize_unit(img.pixels[i]);
+  return stb_write8(path, ext, q, error);
 }
 
 }  // namespace rayform

@@ -22,8 +22,14 @@ bool stb_read(const std::string& path, Image* image, std::string* error);
 // 8-bit decode; false (with *error empty) when the file is hdr or 16-bit.
 bool stb_read8(const std::string& path, Image8* image, std::string* error);
 
+// Whether `ext` is one of the 8-bit formats stb writes (bmp, png, tga, jpg).
+bool stb_writes_8bit(const std::string& ext);
+
 // `path` is written as is (the caller picks the temporary name); the format
-// follows `ext`. 8-bit formats store floor(clamp(v, 0, 1) * 255).
+// follows `ext`. 8-bit formats store quantize_unit(v) (image/quantize.h).
 bool stb_write(const std::string& path, const std::string& ext, const Image& image, std::string* error);
+
+// An 8-bit image to an 8-bit format (stb_writes_8bit(ext)), values as they are.
+bool stb_write8(const std::string& path, const std::string& ext, const Image8& image, std::string* error);
 
 }  // namespace rayform

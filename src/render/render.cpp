@@ -1,6 +1,7 @@
 #include "render/render.h"
 
 #include "geometry/ray_offset.h"
+#include "image/quantize.h"
 #include "render/camera_rays.h"
 #include "render/cube_map.h"
 #include "render/shade_phong.h"
@@ -130,6 +131,24 @@ struct PixelOut {
   vec3 albedo{0.f};
 };
 
+// One pixel's colour into the buffer of the chosen format.
+inline void store_color(ColorFormat format, Image& linear, Image8& quantised, uint32_t pixel, vec3 c) {
+  const size_t i = size_t(pixel) * 3;
+  switch (format) {
+    case ColorFormat::linear_float:
+      for (int k = 0; k < 3; ++k) linear.pixels[i + k] = c[k];
+      break;
+    case ColorFormat::unit8:
+      for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = quantize_unit(c[k]);
+      break;
+    case ColorFormat::srgb8: {
+      const SrgbQuantizer& q = srgb_quantizer();
+      for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = q(c[k]);
+      break;
+    }
+  }
+}
+
 template <bool Textures, bool Specular, bool Skips>
 void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res) {
   const Scene& s = *p.scene;
@@ -180,18 +199,10 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           }
           px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
         }
-        float* c = res.color.at(x, y);
-        c[0] = px.color.r;
-        c[1] = px.color.g;
-        c[2] = px.color.b;
+        store_color(o.color_format, res.color, res.color8, pixel, px.color);
         if (o.depth) res.depth[pixel] = px.depth;
         if (o.normals) res.normals[pixel] = px.normal;
-        if (o.albedo) {
-          float* a = res.albedo.at(x, y);
-          a[0] = px.albedo.r;
-          a[1] = px.albedo.g;
-          a[2] = px.albedo.b;
-        }
+        if (o.albedo) store_color(o.color_format, res.albedo, res.albedo8, pixel, px.albedo);
       }
     if (o.progress) {
       int n = ++done;
@@ -254,10 +265,15 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   RenderResult res;
   res.width = width;
   res.height = height;
-  res.color = Image(width, height, 3);
+  auto allocate_color = [&](Image& linear, Image8& quantised) {
+    if (o.color_format == ColorFormat::linear_float) linear = Image(width, height, 3);
+    else quantised = Image8{width, height, 3, std::vector<unsigned char>(size_t(width) * height * 3)};
+  };
+  allocate_color(res.color, res.color8);
   if (o.depth) res.depth.assign(size_t(width) * height, infinity);
   if (o.normals) res.normals.assign(size_t(width) * height, vec3(0.f));
-  if (o.albedo) res.albedo = Image(width, height, 3);
+  if (o.albedo) allocate_color(res.albedo, res.albedo8);
+  if (o.color_format == ColorFormat::srgb8) srgb_quantizer();  // built before the threads start
 
   PathChoice c = choose_path(p, o);
   // Dispatch to one of the eight compiled paths.

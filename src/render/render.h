@@ -12,6 +12,12 @@
 
 namespace rayform {
 
+// How colour and albedo are stored: linear floats (RenderResult::color /
+// albedo), or the 8-bit values of an integer image file (color8 / albedo8),
+// quantised in the render loop by image/quantize.h's rule: as they are
+// (unit8) or after sRGB encoding (srgb8).
+enum class ColorFormat : uint8_t { linear_float, unit8, srgb8 };
+
 // The render parameters, one owner: their defaults are here, their rules in
 // render_options_problem below, and the command line fills this struct (no copy).
 struct RenderOptions {
@@ -24,6 +30,7 @@ struct RenderOptions {
   PixelFilter filter = PixelFilter::box;
   // Which per-pixel outputs to fill besides colour.
   bool depth = false, normals = false, albedo = false;
+  ColorFormat color_format = ColorFormat::linear_float;
   bool generic = false;  // force the general path (no feature specialisation)
   int tile_size = 16;
   // Called with the fraction of tiles done (from worker threads, serialised).
@@ -34,13 +41,15 @@ struct RenderOptions {
 // the pixel's samples. Depth, normals and albedo come from the ray through the
 // pixel centre: depth is the hit distance along it (infinity on a miss),
 // normals are unit world-space shading normals (zero on a miss), albedo is the
-// unlit surface colour K.
+// unlit surface colour K. Only the buffers asked for are allocated.
 struct RenderResult {
   int width = 0, height = 0;
-  Image color;  // 3 channels, linear, unclamped
+  Image color;    // 3 channels, linear, unclamped (ColorFormat::linear_float)
+  Image8 color8;  // 3 channels (ColorFormat::unit8 or srgb8)
   std::vector<float> depth;
   std::vector<vec3> normals;
-  Image albedo;  // 3 channels
+  Image albedo;    // 3 channels, as color
+  Image8 albedo8;  // 3 channels, as color8
 };
 
 // What is wrong with `options`, "" when nothing: the one check of the
