@@ -28,6 +28,8 @@ struct Tracer {
   const PreparedScene& prepared;
   const RenderOptions& options;
   const Scene& scene;
+  // Whether shading may start rays at a hit (shadows, reflections, refractions).
+  bool spawns_rays = options.shadows || (Specular && options.bounces > 0);
 
   vec3 miss(const Ray& ray) const {
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
@@ -43,7 +45,7 @@ struct Tracer {
   bool closest(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
     for (;;) {
       if (!intersect_scene(prepared, ray, hit)) return false;
-      *sp = surface_point(prepared, ray, *hit);
+      *sp = surface_point(prepared, ray, *hit, spawns_rays);
       const Material& m = prepared.materials[sp->material];
       if constexpr (Skips) {
         if (!m.double_sided && glm::dot(ray.direction, sp->geometric_normal) > 0.f) {

@@ -2,7 +2,7 @@
 
 namespace rayform {
 
-SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit) {
+SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit, bool spawns_rays) {
   const Instance& inst = p.instances[hit.instance];
   const Scene& s = *p.scene;
   SurfacePoint sp;
@@ -54,6 +54,8 @@ SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hi
     n_obj = inst.normal_to_world * n_obj;
     ng_obj = inst.normal_to_world * ng_obj;
     pe = transform_point(inst.to_world, pe);
+  }
+  if (inst.has_transform && spawns_rays) {
     // Spawned rays are intersected in object space again: cover the rounding
     // of that mapping too, for any origin within an offset of the point.
     const vec3 e0 = object_roundtrip_error(inst.to_world, inst.to_object, glm::abs(pe.p) + pe.error);
@@ -69,8 +71,7 @@ SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hi
   }
   // A zero-length normal (degenerate data) falls back to facing the ray.
   float ln = glm::length(n_obj), lg = glm::length(ng_obj);
-  vec3 facing = -glm::normalize(ray.direction);
-  sp.geometric_normal = lg > 0.f && std::isfinite(lg) ? ng_obj / lg : facing;
+  sp.geometric_normal = lg > 0.f && std::isfinite(lg) ? ng_obj / lg : -glm::normalize(ray.direction);
   sp.normal = ln > 0.f && std::isfinite(ln) ? n_obj / ln : sp.geometric_normal;
   return sp;
 }

@@ -118,6 +118,9 @@ struct SurfacePoint {
   int material = invalid;
 };
 
-SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit);
+// `spawns_rays` false: no secondary ray will start here, so the bound of a
+// transformed instance leaves out the object-space round trip (the costliest
+// part); position_error then bounds only the point itself.
+SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit, bool spawns_rays = true);
 
 }  // namespace rayform
