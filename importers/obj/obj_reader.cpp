@@ -504,8 +504,10 @@ class ObjSceneBuilder {
     // the faces around it, each weighted by the face's angle at that corner
     // (Thuermer & Wuethrich), so that the result does not depend on how a
     // polygon was split into triangles.
-    std::unordered_map<int, vec3> smooth;
+    const size_t position_count = a.vertices.size() / 3;
+    std::vector<vec3> smooth;  // per position; zero where no face contributes
     if (generate && !options_.flat) {
+      smooth.assign(position_count, vec3(0.f));
       for (size_t f = 0; f < faces; ++f) {
         if (s.mesh.num_face_vertices[f] != 3) continue;
         int v[3];
@@ -531,7 +533,11 @@ class ObjSceneBuilder {
     Mesh mesh;
     mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
     mesh.source_path = path_;
+    // Corners with only a position (the common case of files without uvs and
+    // normals) are looked up by position index; the others by their key.
     std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertices;
+    constexpr uint32_t unseen = ~0u;
+    std::vector<uint32_t> position_only(position_count, unseen);
     std::vector<int> face_mats;
     face_mats.reserve(faces);
     mesh.indices.reserve(faces * 3);
@@ -551,8 +557,19 @@ class ObjSceneBuilder {
         // A corner without a normal: smooth ones are shared per position
         // (key -1); faceted ones belong to their face alone.
         int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(f) : -1));
-        VertexKey key{ix.vertex_index, t, nkey};
-        auto [it, inserted] = vertices.try_emplace(key, uint32_t(mesh.positions.size()));
+        const uint32_t next = uint32_t(mesh.positions.size());
+        uint32_t vertex;
+        bool inserted;
+        if (t < 0 && nkey == -1) {
+          uint32_t& slot = position_only[size_t(ix.vertex_index)];
+          inserted = slot == unseen;
+          if (inserted) slot = next;
+          vertex = slot;
+        } else {
+          auto [it, added] = vertices.try_emplace(VertexKey{ix.vertex_index, t, nkey}, next);
+          inserted = added;
+          vertex = it->second;
+        }
         if (inserted) {
           mesh.positions.push_back(pos(ix.vertex_index));
           if (any_uv) mesh.uvs.push_back(t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f));
@@ -560,7 +577,7 @@ class ObjSceneBuilder {
             vec3 nv(0.f);
             if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
             else if (options_.flat) nv = face_normal;
-            else if (auto sit = smooth.find(ix.vertex_index); sit != smooth.end()) nv = sit->second;
+            else if (!smooth.empty()) nv = smooth[size_t(ix.vertex_index)];
             float len = glm::length(nv);
             mesh.normals.push_back(len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f));
           }
@@ -569,7 +586,7 @@ class ObjSceneBuilder {
             mesh.colors.push_back(vec3(a.colors[3 * v], a.colors[3 * v + 1], a.colors[3 * v + 2]));
           }
         }
-        mesh.indices.push_back(it->second);
+        mesh.indices.push_back(vertex);
       }
       int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
       face_mats.push_back(mid >= 0 && size_t(mid) < lib_.materials.size() ? mid : default_material());
