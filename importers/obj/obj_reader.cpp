@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 
 namespace rayform {
@@ -208,6 +209,16 @@ struct VertexKeyHash {
   }
 };
 
+// A read-only stream buffer over text kept elsewhere (tinyobjloader reads a
+// std::istream; std::istringstream would copy the whole file).
+class TextStreamBuffer : public std::streambuf {
+ public:
+  explicit TextStreamBuffer(std::string_view text) {
+    char* first = const_cast<char*>(text.data());  // never written: get area only
+    setg(first, first, first + text.size());
+  }
+};
+
 class ObjSceneBuilder {
  public:
   ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
@@ -221,7 +232,8 @@ class ObjSceneBuilder {
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn_text, err;
-    std::istringstream in(text_);
+    TextStreamBuffer buffer(text_);
+    std::istream in(&buffer);
     PreloadedMaterials reader(lib_);
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err, &in, &reader, /*triangulate*/ true,
                                /*default_vcols_fallback*/ false);
@@ -312,15 +324,21 @@ class ObjSceneBuilder {
 
   // ---- materials ---------------------------------------------------------
 
+  // The `mtllib` lines, found by searching the text for the word (not line by
+  // line: a mesh file is mostly vertices and faces).
   void load_material_libraries() {
-    std::istringstream in(text_);
-    std::string line;
-    size_t line_no = 0;
+    const std::string_view text(text_);
+    size_t line_no = 1, counted_to = 0;  // line_no: the line at offset counted_to
     std::set<std::string> loaded;
-    while (std::getline(in, line)) {
-      ++line_no;
-      size_t b = line.find_first_not_of(" \t");
-      if (b == std::string::npos || line.compare(b, 6, "mtllib") != 0) continue;
+    for (size_t at = text.find("mtllib"); at != std::string_view::npos; at = text.find("mtllib", at + 6)) {
+      const size_t newline_before = text.rfind('\n', at);
+      const size_t line_start = newline_before == std::string_view::npos ? 0 : newline_before + 1;
+      const size_t b = at - line_start;  // where the word starts in its line
+      if (text.substr(line_start, b).find_first_not_of(" \t") != std::string_view::npos) continue;
+      const size_t line_end = std::min(text.find('\n', at), text.size());
+      const std::string line(text.substr(line_start, line_end - line_start));
+      line_no += size_t(std::count(text.begin() + counted_to, text.begin() + line_start, '\n'));
+      counted_to = line_start;
       if (b + 6 < line.size() && line[b + 6] != ' ' && line[b + 6] != '\t') continue;
       std::string rest = trim(line.substr(b + 6));
       std::string where = path_ + ":" + std::to_string(line_no);
@@ -541,6 +559,7 @@ class ObjSceneBuilder {
     std::vector<int> face_mats;
     face_mats.reserve(faces);
     mesh.indices.reserve(faces * 3);
+    mesh.positions.reserve(std::min(position_count, faces * 3));
     for (size_t f = 0; f < faces; ++f) {
       if (s.mesh.num_face_vertices[f] != 3) continue;
       vec3 face_normal(0.f);
