@@ -107,7 +107,7 @@ void add_render_command(CLI::App& app) {
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
-  render->add_flag("--stats", job.stats, "Print load/prepare/render times and accelerator memory on stderr");
+  render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
   render->callback([a] {
     parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);

@@ -9,8 +9,11 @@
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 
@@ -70,6 +73,10 @@ void run_render_job(const RenderJob& job) {
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw Error(problem);
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  // --threads bounds the whole job (the BVH build too), not only the render.
+  std::optional<tbb::global_control> thread_limit;
+  if (job.render.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(job.render.threads));
   auto t_load = clock::now();
   LoadOptions lo;
   lo.dialect = job.dialect;
@@ -109,11 +116,7 @@ void run_render_job(const RenderJob& job) {
   RenderResult result = render(prepared, ro);
   double render_s = seconds_since(t_render);
   progress.finish();
-  if (job.stats)
-    std::cerr << "stats: load " << load_s << " s, prepare " << prepare_s << " s, render " << render_s << " s ("
-              << render_path_name(prepared, ro) << " path, " << ro.width << "x" << ro.height << ", " << ro.spp
-              << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
-
+  auto t_write = clock::now();
   if (srgb && ro.color_format == ColorFormat::linear_float) {
     encode_srgb(result.color);
     if (!job.albedo.empty()) encode_srgb(result.albedo);
@@ -134,6 +137,10 @@ void run_render_job(const RenderJob& job) {
   }
   for (const auto& [path, image] : outputs) files.add_written(path, write_image_temporary(path, image));
   files.commit();
+  if (job.stats)
+    std::cerr << "stats: load " << load_s << " s, prepare " << prepare_s << " s, render " << render_s << " s, write "
+              << seconds_since(t_write) << " s (" << render_path_name(prepared, ro) << " path, " << ro.width << "x"
+              << ro.height << ", " << ro.spp << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
 }
 
 }  // namespace rayform::cli
