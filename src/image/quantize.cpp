@@ -31,6 +31,16 @@ SrgbQuantizer make_srgb_quantizer() {
     }
     q.threshold[size_t(k)] = std::bit_cast<float>(lo);
   }
+  q.threshold[256] = std::numeric_limits<float>::quiet_NaN();
+  // Each bucket's level by the (branchy, exact) search over the thresholds.
+  for (size_t b = 0; b < SrgbQuantizer::buckets; ++b) {
+    const float v = std::bit_cast<float>(uint32_t(b) << SrgbQuantizer::bucket_shift);
+    int k = 0;
+    while (k < 255 && q.threshold[size_t(k + 1)] <= v) ++k;
+    q.bucket_level[b] = uint8_t(k);
+  }
+  q.level_at_or_below_zero = quantize_srgb_direct(0.f);
+  q.level_at_or_above_one = quantize_srgb_direct(1.f);
   return q;
 }
 }  // namespace

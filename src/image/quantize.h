@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -16,23 +17,31 @@ inline uint8_t quantize_unit(float v) {
 }
 
 // quantize_unit(linear_to_srgb(clamp(v, 0, 1))) for a linear value v, without
-// evaluating pow: `threshold[k]` is the smallest float v in [0, 1] whose value
-// is k or more (NaN for a value never reached: no v compares >= NaN), found once by bisection
-// on float bit patterns. Equal to the direct formula for every input (tests
-// check each threshold, its neighbours and random inputs against it).
+// evaluating pow and without data-dependent branches: `threshold[k]` is the
+// smallest float v in [0, 1] whose value is k or more (NaN for a value never
+// reached: no v compares >= NaN), found once by bisection on float bit
+// patterns; `bucket_level[b]` is the value at the start of each run of 2^16
+// floats (bit patterns b << 16). A bucket spans less than one step (at most
+// 0.66 of one, just below 1), so one comparison finishes the lookup. Equal to
+// the direct formula for every input (tests check each threshold, its
+// neighbours, every bucket and random inputs against it).
 struct SrgbQuantizer {
-  std::array<float, 256> threshold{};  // threshold[0] = -infinity
+  static constexpr int bucket_shift = 16;
+  static constexpr size_t buckets = (0x3f800000u >> bucket_shift) + 1;  // bit patterns of [0, 1]
+  std::array<float, 257> threshold{};  // threshold[0] = -infinity, threshold[256] = NaN
+  std::array<uint8_t, buckets> bucket_level{};
+  uint8_t level_at_or_below_zero = 0, level_at_or_above_one = 0;
 
   uint8_t operator()(float v) const {
     if (std::isnan(v)) return 0;
-    int k = 0;  // the largest k with threshold[k] <= v, in eight steps
-    for (int step = 128; step > 0; step >>= 1)
-      if (threshold[size_t(k + step)] <= v) k += step;
-    return uint8_t(k);
+    if (v <= 0.f) return level_at_or_below_zero;
+    if (v >= 1.f) return level_at_or_above_one;
+    const int k = bucket_level[std::bit_cast<uint32_t>(v) >> bucket_shift];
+    return uint8_t(k + (threshold[size_t(k + 1)] <= v));
   }
 };
 
-// Built on first use (thread-safe; about 8000 pow evaluations).
+// Built on first use (thread-safe; about 8000 pow evaluations and 16 000 lookups).
 const SrgbQuantizer& srgb_quantizer();
 
 // The direct formula the quantizer reproduces (for tests and one-off values).

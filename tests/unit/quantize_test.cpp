@@ -62,6 +62,20 @@ TEST(Quantize, SrgbTableEqualsTheDirectFormulaAroundEveryThreshold) {
   EXPECT_EQ(q(inf), quantize_srgb_direct(1.f));
 }
 
+// The lookup compares with one threshold only: every bucket of 2^16 floats
+// must span at most one step, and its first and last floats must agree.
+TEST(Quantize, EverySrgbBucketSpansAtMostOneStep) {
+  const SrgbQuantizer& q = srgb_quantizer();
+  for (size_t b = 1; b < SrgbQuantizer::buckets - 1; ++b) {
+    const float first = std::bit_cast<float>(uint32_t(b) << SrgbQuantizer::bucket_shift);
+    const float last = std::bit_cast<float>((uint32_t(b + 1) << SrgbQuantizer::bucket_shift) - 1u);
+    ASSERT_EQ(q.bucket_level[b], quantize_srgb_direct(first)) << b;
+    ASSERT_LE(quantize_srgb_direct(last) - q.bucket_level[b], 1) << b;
+    ASSERT_EQ(q(first), quantize_srgb_direct(first)) << b;
+    ASSERT_EQ(q(last), quantize_srgb_direct(last)) << b;
+  }
+}
+
 TEST(Quantize, SrgbTableEqualsTheDirectFormulaOnRandomInputs) {
   const SrgbQuantizer& q = srgb_quantizer();
   std::mt19937 rng(5);
