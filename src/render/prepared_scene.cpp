@@ -47,6 +47,18 @@ size_t PreparedScene::memory_bytes() const {
   return bytes;
 }
 
+PreparedLight prepare_light(const Light& light) {
+  PreparedLight p;
+  p.light = light;
+  if (light.kind == Light::Kind::directional) p.to_light = -glm::normalize(light.direction);
+  if (light.kind == Light::Kind::spot) {
+    p.axis = glm::normalize(light.direction);
+    p.cos_outer = std::cos(radians(light.spot_outer_deg));
+    p.cos_inner = std::cos(radians(light.spot_inner_deg));
+  }
+  return p;
+}
+
 PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   PreparedScene p;
   p.scene = &scene;
@@ -126,6 +138,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     }
   }
   for (const Light& l : scene.lights) {
+    p.lights.push_back(prepare_light(l));
     if (l.kind != Light::Kind::directional) f.point_lights = true;
     if (l.kind != Light::Kind::directional && l.falloff > 0.f) f.falloff = true;
   }

@@ -44,6 +44,16 @@ struct SceneFeatures {
   bool falloff = false;  // some point light attenuates with distance
 };
 
+// A light with what shading needs at every hit computed once.
+struct PreparedLight {
+  Light light;
+  vec3 to_light{0.f, 0.f, 1.f};              // directional: -normalize(light.direction)
+  vec3 axis{0.f, 0.f, -1.f};                 // spot: normalize(light.direction)
+  float cos_outer = -1.f, cos_inner = -1.f;  // spot: cosines of the cone angles
+};
+
+PreparedLight prepare_light(const Light& light);
+
 struct PrepareOptions {
   BvhBuildOptions bvh;
 };
@@ -57,6 +67,7 @@ struct PreparedScene {
   std::vector<TextureImage> textures;     // per Scene texture; empty image if unused
   std::vector<Material> materials;        // the Scene's, then one default material
   std::vector<TextureImage> cube_map;     // six faces, or empty
+  std::vector<PreparedLight> lights;      // the Scene's, in order
   SceneFeatures features;
   Bounds3 bounds;  // of the bounded instances, world space
 

@@ -88,9 +88,9 @@ struct Tracer {
     if (m.unlit) return k;
     vec3 d = glm::normalize(ray.direction);
     vec3 c = scene.background.ambient * k + m.emission;
-    for (const Light& l : scene.lights) {
+    for (const PreparedLight& l : prepared.lights) {
       LightSample ls = sample_light(l, sp.position);
-      if (options.shadows && blocked(sp, l, ls)) continue;
+      if (options.shadows && blocked(sp, l.light, ls)) continue;
       if constexpr (Specular) c += phong_light(m, k, sp.normal, d, ls);
       else c += diffuse_light(k, sp.normal, ls);
     }

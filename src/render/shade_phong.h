@@ -17,10 +17,11 @@ struct LightSample {
   float distance;  // to the light; infinity for directional lights
 };
 
-inline LightSample sample_light(const Light& l, vec3 p) {
+inline LightSample sample_light(const PreparedLight& pl, vec3 p) {
+  const Light& l = pl.light;
   LightSample s;
   if (l.kind == Light::Kind::directional) {
-    s.to_light = -glm::normalize(l.direction);
+    s.to_light = pl.to_light;
     s.color = l.color;
     s.distance = infinity;
     return s;
@@ -37,8 +38,8 @@ inline LightSample sample_light(const Light& l, vec3 p) {
     s.color *= window * window;
   }
   if (l.kind == Light::Kind::spot) {
-    float cos_outer = std::cos(radians(l.spot_outer_deg)), cos_inner = std::cos(radians(l.spot_inner_deg));
-    float cd = glm::dot(-s.to_light, glm::normalize(l.direction));
+    const float cos_outer = pl.cos_outer, cos_inner = pl.cos_inner;
+    float cd = glm::dot(-s.to_light, pl.axis);
     float k = cos_inner > cos_outer ? std::clamp((cd - cos_outer) / (cos_inner - cos_outer), 0.f, 1.f)
                                     : (cd >= cos_outer ? 1.f : 0.f);
     s.color *= k * k;

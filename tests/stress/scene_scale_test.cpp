@@ -182,7 +182,7 @@ std::vector<PixelTrace> trace_pixels(const PreparedScene& p, int n) {
       const vec3 p_naive = ray.at(hit.t);  // the textbook hit point
       for (int li = 0; li < 2; ++li) {
         const Light& l = s.lights[li];
-        const LightSample ls = sample_light(l, sp.position);
+        const LightSample ls = sample_light(p.lights[size_t(li)], sp.position);
         // Lights nearly tangent to the surface (|cos| < 0.01) are left out:
         // there the lit side itself is decided by the rounding.
         if (!(glm::dot(ls.to_light, nf) > 0.01f)) continue;
