@@ -86,7 +86,9 @@ struct Tracer {
   vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth) const {
     const Material& m = prepared.materials[sp.material];
     if (m.unlit) return k;
-    vec3 d = glm::normalize(ray.direction);
+    // The unit view direction, for highlights and secondary rays only.
+    vec3 d(0.f);
+    if constexpr (Specular) d = glm::normalize(ray.direction);
     vec3 c = scene.background.ambient * k + m.emission;
     for (const PreparedLight& l : prepared.lights) {
       LightSample ls = sample_light(l, sp.position);
@@ -134,7 +136,8 @@ struct PixelOut {
 };
 
 // One pixel's colour into the buffer of the chosen format.
-inline void store_color(ColorFormat format, Image& linear, Image8& quantised, uint32_t pixel, vec3 c) {
+[[gnu::always_inline]] inline void store_color(ColorFormat format, Image& linear, Image8& quantised, uint32_t pixel,
+                                               vec3 c) {
   const size_t i = size_t(pixel) * 3;
   switch (format) {
     case ColorFormat::linear_float:
