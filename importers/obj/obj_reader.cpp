@@ -26,7 +26,16 @@ constexpr float default_grey = 0.8f;
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open OBJ file");
-  std::ostringstream ss;
+  std::error_code ec;
+  const uintmax_t size = fs::is_regular_file(path, ec) ? fs::file_size(path, ec) : 0;
+  if (!ec && size > 0) {  // one read into a buffer of the file's size
+    std::string text(size_t(size), '\0');
+    in.read(text.data(), std::streamsize(size));
+    text.resize(size_t(in.gcount()));
+    if (in.bad()) throw Error(path + ": cannot read OBJ file");
+    return text;
+  }
+  std::ostringstream ss;  // not a regular file: read to the end
   ss << in.rdbuf();
   if (in.bad()) throw Error(path + ": cannot read OBJ file");
   return ss.str();
