@@ -17,6 +17,7 @@
 #include "geometry/bounds.h"
 #include "geometry/ray.h"
 
+#include <bit>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
@@ -39,6 +40,32 @@ inline int children_hit(const WideBvhNode& n, const NodeRay& nr, float tmax, flo
   return node_hits<Oct>(n, nr, tmax, t_enter);
 }
 
+// Which hit of a packet becomes the closest one, if any: the lane with the
+// smallest t below tmax (the lowest lane of equal ones), or else, among lanes
+// at exactly t == tmax, the lowest one if its slot comes before that of the hit
+// found so far. So the closest hit is the smallest (t, slot) over all the
+// triangles the ray hits, whatever order the traversal meets them in (the
+// packet traversal of mesh_accel_packet8.h meets them in another). Ties are
+// rare: rays through an edge or vertex shared by triangles of equal t.
+inline uint32_t packet_slot(uint32_t packet, int lane) { return 4 * packet + uint32_t(lane) + 1; }
+
+inline bool pick_closest_lane(const PacketHits& h, uint32_t packet, bool found, uint32_t hit_slot, int* best) {
+  if (h.mask) {
+    alignas(16) float ts[4];
+    simd::store(ts, h.t);
+    int rest = h.mask;
+    *best = pop_lowest_bit(rest);
+    while (rest) {
+      int lane = pop_lowest_bit(rest);
+      if (ts[lane] < ts[*best]) *best = lane;
+    }
+    return true;
+  }
+  if (!found || !h.tie_mask) return false;
+  *best = std::countr_zero(unsigned(h.tie_mask));
+  return packet_slot(packet, *best) < hit_slot;
+}
+
 // One traversal, two queries. closest_hit: nearest child first, the others
 // pushed with their entry distance and skipped when popped behind the closest
 // hit found meanwhile; *hit set when it returns true. any_hit: children in
@@ -58,6 +85,7 @@ inline bool traverse_octant(const MeshAccel& m, const NodeRay& nr, const TriRay&
   int top = 0;
   uint32_t ref = 0;
   bool found = false;
+  uint32_t hit_slot = 0;  // packet_slot of the hit found
   uint32_t hit_id = 0;
   float hit_e[3] = {0.f, 0.f, 0.f}, hit_inv = 0.f;
   for (;;) {
@@ -114,17 +142,17 @@ inline bool traverse_octant(const MeshAccel& m, const NodeRay& nr, const TriRay&
       const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
       for (uint32_t k = first; k < first + count; ++k) {
         PacketHits h = intersect_packet(packets[k], tr, tmax);
-        if (!h.mask) continue;
-        if constexpr (any_hit) return true;
+        int best;
+        if constexpr (any_hit) {
+          if (h.mask) return true;
+          continue;
+        } else if (!pick_closest_lane(h, k, found, hit_slot, &best)) {
+          continue;
+        }
         alignas(16) float ts[4];
         simd::store(ts, h.t);
-        int rest = h.mask;
-        int best = pop_lowest_bit(rest);
-        while (rest) {  // the lowest lane wins ties, as the scalar loop's order would
-          int lane = pop_lowest_bit(rest);
-          if (ts[lane] < ts[best]) best = lane;
-        }
         tmax = ts[best];
+        hit_slot = packet_slot(k, best);
         alignas(16) float e0[4], e1[4], e2[4], inv[4];
         simd::store(e0, h.e0);
         simd::store(e1, h.e1);

@@ -41,9 +41,11 @@ struct TriRay {
   }
 };
 
-// Results of the watertight test on one packet (valid lanes in `mask`).
+// Results of the watertight test on one packet: lanes hit with tmin < t < tmax
+// in `mask`, lanes hit at exactly t == tmax in `tie_mask` (closest-hit kernels
+// break such ties by packet slot, mesh_accel_kernel.h).
 struct PacketHits {
-  int mask = 0;
+  int mask = 0, tie_mask = 0;
   f4 t, e0, e1, e2, inv_det;
 };
 
@@ -113,15 +115,15 @@ intersect_packet(const TrianglePacket& p, const TriRay& r, float tmax) {
   cz = cz * r.sz;
   f4 t_scaled = e0 * az + e1 * bz + e2 * cz;
   const f4 tmin4 = splat(r.tmin), tmax4 = splat(tmax);
-  f4 tmin_det = tmin4 * det, tmax_det = tmax4 * det;
+  f4 tmin_det = tmin4 * det;
   m4 neg = det<zero, pos = det> zero;
-  valid = andnot(valid, neg & ((t_scaled >= tmin_det) | (t_scaled <= tmax_det)));
-  valid = andnot(valid, pos & ((t_scaled <= tmin_det) | (t_scaled >= tmax_det)));
+  valid = andnot(valid, neg & (t_scaled >= tmin_det));
+  valid = andnot(valid, pos & (t_scaled <= tmin_det));
   if (mask_bits(valid) == 0) return h;
 
   f4 inv_det = splat(1.f) / det;
   f4 t = t_scaled * inv_det;
-  valid = valid & (t > tmin4) & (t < tmax4);
+  valid = valid & (t > tmin4) & (t <= tmax4);
 
   // In front of the origin despite rounding: every vertex in front by more
   // than its z error, or else t above the conservative bound on its error.
@@ -139,7 +141,8 @@ intersect_packet(const TrianglePacket& p, const TriRay& r, float tmax) {
         splat(3.f) * (splat(gamma_bound(3)) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * vabs(inv_det);
     valid = valid & (front | (t > delta_t));
   }
-  h.mask = mask_bits(valid);
+  h.mask = mask_bits(valid & (t < tmax4));
+  h.tie_mask = mask_bits(valid & (t == tmax4));
   h.t = t;
   h.e0 = e0;
   h.e1 = e1;

@@ -76,14 +76,17 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   b.z *= r.sz;
   c.z *= r.sz;
   float t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
-  // Range test on the scaled distance (avoids the division for rejected hits).
-  if (det < 0.f && (t_scaled >= tmin * det || t_scaled <= tmax * det)) return false;
-  if (det > 0.f && (t_scaled <= tmin * det || t_scaled >= tmax * det)) return false;
+  // Behind tmin on the scaled distance (avoids the division for those hits).
+  // tmax is tested on t alone, so that whether a hit is reported depends only on
+  // its t and not on the bound: closest-hit traversals find the same hit
+  // whatever order they meet the triangles in (mesh_accel_kernel.h).
+  if (det < 0.f && t_scaled >= tmin * det) return false;
+  if (det > 0.f && t_scaled <= tmin * det) return false;
 
   float inv_det = 1.f / det;
   float t = t_scaled * inv_det;
-  // The scaled test above can pass a t that the division rounds onto tmin or
-  // tmax (or beyond): check the interval again on t itself, open at both ends.
+  // The scaled test above can pass a t that the division rounds onto tmin:
+  // check the interval on t itself, open at both ends.
   if (!(t > tmin && t < tmax)) return false;
 
   // Conservative bound on the error of t (pbrt-v4, section 6.8.7): reject hits
