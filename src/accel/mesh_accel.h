@@ -94,6 +94,14 @@ struct MeshHit {
 // else leaves both unchanged.
 bool intersect_mesh(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hit);
 
+// Closest hits of eight rays (bit i of `active`: rays[i] is traced; all
+// eight must be valid rays): for each traced ray exactly what intersect_mesh
+// gives it with tmax[i]. Returns the bits of the rays that hit, lowers their
+// tmax[i] and fills their hits[i]. When the traced rays share the octant of
+// their direction (camera rays of neighbouring pixels) and the CPU has AVX2,
+// they go through the tree together; otherwise one by one.
+int intersect_mesh8(const MeshAccel& m, const Ray* rays, int active, float* tmax, MeshHit* hits);
+
 // Whether some triangle lies on the ray with ray.tmin < t < ray.tmax.
 bool occluded_mesh(const MeshAccel& m, const Ray& ray);
 

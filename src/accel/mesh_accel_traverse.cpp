@@ -8,6 +8,7 @@
 
 #include "accel/mesh_accel_node_test.h"
 
+#include <bit>
 #include <cstdlib>
 
 // The kernels with the portable node test: kernel_portable::intersect/occluded.
@@ -21,6 +22,7 @@
 #pragma GCC target("avx2")
 #define RAYFORM_MESH_KERNEL_FLAVOUR kernel_avx2
 #include "accel/mesh_accel_kernel.h"
+#include "accel/mesh_accel_packet8.h"
 #pragma GCC pop_options
 #endif
 
@@ -44,6 +46,27 @@ bool intersect_mesh(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hi
   if (use_avx2()) return kernel_avx2::intersect(m, ray, tmax, hit);
 #endif
   return kernel_portable::intersect(m, ray, tmax, hit);
+}
+
+int intersect_mesh8(const MeshAccel& m, const Ray* rays, int active, float* tmax, MeshHit* hits) {
+#if RAYFORM_HAVE_AVX2_KERNEL
+  if (use_avx2() && active) {
+    int oct = -1;
+    bool one_octant = true;
+    for (int rest = active; rest && one_octant;) {
+      const int i = std::countr_zero(unsigned(rest));
+      rest &= rest - 1;
+      const int o = octant(make_ray_slabs(rays[i]));
+      one_octant = oct < 0 || o == oct;
+      oct = o;
+    }
+    if (one_octant) return kernel_avx2::intersect8(m, rays, active, oct, tmax, hits);
+  }
+#endif
+  int found = 0;
+  for (int i = 0; i < 8; ++i)
+    if (((active >> i) & 1) && intersect_mesh(m, rays[i], tmax[i], &hits[i])) found |= 1 << i;
+  return found;
 }
 
 bool occluded_mesh(const MeshAccel& m, const Ray& ray) {
