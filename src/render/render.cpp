@@ -43,8 +43,15 @@ struct Tracer {
   // Closest hit that is neither a cut-out hole (alpha below the material's
   // cutoff) nor the back face of a single-sided material: those the ray passes.
   bool closest(Ray ray, Hit* hit, SurfacePoint* sp, vec4* k) const {
-    for (;;) {
-      if (!intersect_scene(prepared, ray, hit)) return false;
+    return closest_from(ray, intersect_scene(prepared, ray, hit), hit, sp, k);
+  }
+
+  // The same, given the ray's first hit (`found`, *hit) from intersect_scene
+  // or its eight-ray form.
+  bool closest_from(Ray ray, bool found, Hit* hit, SurfacePoint* sp, vec4* k) const {
+    for (bool first = true;; first = false) {
+      if (!first) found = intersect_scene(prepared, ray, hit);
+      if (!found) return false;
       *sp = surface_point(prepared, ray, *hit, spawns_rays);
       const Material& m = prepared.materials[sp->material];
       if constexpr (Skips) {
@@ -166,12 +173,15 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   std::atomic<int> done{0};
   std::mutex progress_mutex;
 
+  // Camera rays of a scene that is one mesh go through it eight at a time
+  // (the same hits as one by one).
+  const int sole_mesh = o.packets ? sole_mesh_instance(p) : -1;
+
   // The first hit of a camera ray gives the per-pixel outputs.
-  auto trace_primary = [&](const Ray& ray, PixelOut& px) {
-    Hit hit;
+  auto shade_primary = [&](const Ray& ray, bool found, Hit hit, PixelOut& px) {
     SurfacePoint sp;
     vec4 k(0.f);
-    if (!tracer.closest(ray, &hit, &sp, &k)) {
+    if (!tracer.closest_from(ray, found, &hit, &sp, &k)) {
       px.color = tracer.miss(ray);
       return;
     }
@@ -180,35 +190,61 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     px.albedo = vec3(k);
     px.color = tracer.shade(ray, sp, vec3(k), 0);
   };
+  auto trace_primary = [&](const Ray& ray, PixelOut& px) {
+    Hit hit;
+    const bool found = intersect_scene(p, ray, &hit);
+    shade_primary(ray, found, hit, px);
+  };
+  auto store = [&](uint32_t pixel, const PixelOut& px) {
+    store_color(o.color_format, res.color, res.color8, pixel, px.color);
+    if (o.depth) res.depth[pixel] = px.depth;
+    if (o.normals) res.normals[pixel] = px.normal;
+    if (o.albedo) store_color(o.color_format, res.albedo, res.albedo8, pixel, px.albedo);
+  };
 
   auto render_tile = [&](int tile) {
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
     int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        // Row y counts from the top; the camera's j counts from the bottom.
-        const float i = float(x), j = float(height - 1 - y);
-        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
-        PixelOut px;
-        if (o.spp <= 1) {
-          trace_primary(camera_ray(frame, i, j), px);
-        } else {
-          if (aovs) trace_primary(camera_ray(frame, i, j), px);
-          vec3 sum(0.f);
-          float weight = 0.f;
-          for (int n = 0; n < o.spp; ++n) {
-            PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter);
-            if (so.weight <= 0.f) continue;
-            sum += so.weight * tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0);
-            weight += so.weight;
+    if (o.spp <= 1 && sole_mesh >= 0) {
+      // Rows of eight pixels; a shorter end of row repeats its last ray in the unused lanes.
+      for (int y = y0; y < y1; ++y)
+        for (int xs = x0; xs < x1; xs += 8) {
+          const int n = std::min(8, x1 - xs);
+          Ray rays[8];
+          Hit hits[8];
+          for (int l = 0; l < 8; ++l)
+            rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
+          const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
+          for (int l = 0; l < n; ++l) {
+            PixelOut px;
+            shade_primary(rays[l], (found >> l) & 1, hits[l], px);
+            store(uint32_t(y) * uint32_t(width) + uint32_t(xs + l), px);
           }
-          px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
         }
-        store_color(o.color_format, res.color, res.color8, pixel, px.color);
-        if (o.depth) res.depth[pixel] = px.depth;
-        if (o.normals) res.normals[pixel] = px.normal;
-        if (o.albedo) store_color(o.color_format, res.albedo, res.albedo8, pixel, px.albedo);
-      }
+    } else {
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          // Row y counts from the top; the camera's j counts from the bottom.
+          const float i = float(x), j = float(height - 1 - y);
+          const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+          PixelOut px;
+          if (o.spp <= 1) {
+            trace_primary(camera_ray(frame, i, j), px);
+          } else {
+            if (aovs) trace_primary(camera_ray(frame, i, j), px);
+            vec3 sum(0.f);
+            float weight = 0.f;
+            for (int n = 0; n < o.spp; ++n) {
+              PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter);
+              if (so.weight <= 0.f) continue;
+              sum += so.weight * tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0);
+              weight += so.weight;
+            }
+            px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
+          }
+          store(pixel, px);
+        }
+    }
     if (o.progress) {
       int n = ++done;
       std::lock_guard lock(progress_mutex);

@@ -32,6 +32,7 @@ struct RenderOptions {
   bool depth = false, normals = false, albedo = false;
   ColorFormat color_format = ColorFormat::linear_float;
   bool generic = false;  // force the general path (no feature specialisation)
+  bool packets = true;   // camera rays of a one-mesh scene eight at a time (the same image)
   int tile_size = 16;
   // Called with the fraction of tiles done (from worker threads, serialised).
   std::function<void(float)> progress;

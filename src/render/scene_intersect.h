@@ -79,6 +79,35 @@ inline bool intersect_scene(const PreparedScene& p, const Ray& ray, Hit* hit) {
   return found;
 }
 
+// The instance of a scene that consists of one mesh instance (no other shape,
+// no plane), or -1. Camera rays of such a scene go through its mesh eight at a
+// time (intersect_sole_mesh8).
+inline int sole_mesh_instance(const PreparedScene& p) {
+  if (!p.plane_instances.empty() || p.top.nodes.size() != 1 || p.top.nodes[0].count != 1) return -1;
+  const uint32_t index = p.top.primitives[p.top.nodes[0].offset];
+  return p.instances[index].kind == ShapeKind::mesh ? int(index) : -1;
+}
+
+// intersect_scene for eight rays (bit i of `active`: rays[i] is traced; all
+// eight valid) of a scene whose sole_mesh_instance is `instance`: returns the
+// bits of the rays that hit and fills their hits[i], each exactly what
+// intersect_scene gives that ray.
+inline int intersect_sole_mesh8(const PreparedScene& p, int instance, const Ray* rays, int active, Hit* hits) {
+  const Instance& inst = p.instances[size_t(instance)];
+  Ray object_rays[8];
+  float tmax[8];
+  MeshHit mesh_hits[8];
+  for (int i = 0; i < 8; ++i) {
+    object_rays[i] = to_object_space(inst, rays[i]);
+    tmax[i] = object_rays[i].tmax = rays[i].tmax;
+  }
+  const int found = intersect_mesh8(p.meshes[size_t(inst.shape)], object_rays, active, tmax, mesh_hits);
+  for (int i = 0; i < 8; ++i)
+    if ((found >> i) & 1)
+      hits[i] = {tmax[i], uint32_t(instance), mesh_hits[i].triangle, mesh_hits[i].b1, mesh_hits[i].b2};
+  return found;
+}
+
 // Whether anything lies on the ray with tmin < t < tmax (shadow rays).
 inline bool occluded(const PreparedScene& p, const Ray& ray) {
   auto blocks = [&](uint32_t index) {

@@ -6,7 +6,9 @@
 // and the image does not depend on the thread count or the tile size.
 #include "render/prepared_scene.h"
 #include "render/render.h"
+#include "render/scene_intersect.h"
 #include "scene/procedural_mesh.h"
+#include "scene/scene_defaults.h"
 #include "scene_io.h"
 #include "test_paths.h"
 #include "test_scenes.h"
@@ -16,6 +18,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace rayform {
 namespace {
@@ -103,6 +106,38 @@ TEST(RenderPaths, ImageDoesNotDependOnThreadsOrTiles) {
     o.threads = threads;
     o.tile_size = tile;
     expect_identical(one, render(p, o), "threads " + std::to_string(threads) + ", tile " + std::to_string(tile));
+  }
+}
+
+// Camera rays of one-mesh scenes go through the mesh eight at a time: the
+// image is the one they give one by one, for a transformed mesh (course
+// scene06), an OBJ without transform, odd sizes (partial packets at the ends
+// of tile rows), small tiles, and with every output.
+TEST(RenderPaths, EightRayPacketsGiveTheSameImage) {
+  std::vector<std::pair<std::string, LoadedScene>> scenes;
+  scenes.emplace_back("torus.obj", load_scene((test::source_dir() / "scenes" / "assets" / "torus.obj").string()));
+  add_default_camera(scenes.back().second.scene);
+  add_headlight(scenes.back().second.scene, 0);
+  const fs::path scene06 = test::shared_dir() / "course" / "2012" / "scene06_bunny_1k.txt";
+  if (fs::exists(scene06)) scenes.emplace_back("scene06", load_scene(scene06.string()));
+  for (auto& [name, loaded] : scenes) {
+    PreparedScene p = prepare_scene(loaded.scene);
+    ASSERT_GE(sole_mesh_instance(p), 0) << name << " should take the packet path";
+    for (auto [w, h, tile] : {std::tuple{61, 47, 16}, std::tuple{64, 64, 5}}) {
+      RenderOptions o;
+      o.width = w;
+      o.height = h;
+      o.tile_size = tile;
+      o.shadows = true;
+      o.depth = o.normals = o.albedo = true;
+      o.packets = false;
+      const RenderResult one_by_one = render(p, o);
+      o.packets = true;
+      expect_identical(one_by_one, render(p, o), name + " " + std::to_string(w) + "x" + std::to_string(h));
+      int hits = 0;
+      for (float d : one_by_one.depth) hits += std::isfinite(d);
+      EXPECT_GT(hits, w * h / 20) << name;  // the mesh is in the picture
+    }
   }
 }
 
