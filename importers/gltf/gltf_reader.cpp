@@ -3,6 +3,7 @@
 #include "gltf/gltf_accessors.h"
 #include "gltf/gltf_compression.h"
 #include "gltf/gltf_extras.h"
+#include "gltf/gltf_file_access.h"
 #include "gltf/gltf_images.h"
 #include "gltf/gltf_material.h"
 #include "gltf/gltf_messages.h"
@@ -36,153 +37,6 @@ namespace {
 // ---- small helpers ----------------------------------------------------------
 
 std::string idx(const char* array, long i) { return gltf_path(array, i); }
-
-std::string percent_decode(const std::string& s) {
-  std::string out;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-      out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
-bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
-
-// ---- JSON that tinygltf refuses -----------------------------------------------
-
-// The glTF JSON of `bytes` (a .gltf, or a .glb's JSON chunk), where it lies.
-struct JsonChunk {
-  size_t offset = 0, length = 0;
-};
-bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chunk) {
-  if (!glb) {
-    *chunk = JsonChunk{0, bytes.size()};
-    return true;
-  }
-  constexpr size_t header = 12, chunk_header = 8;
-  if (bytes.size() < header + chunk_header) return false;
-  uint32_t length = 0, type = 0;
-  std::memcpy(&length, bytes.data() + header, 4);
-  std::memcpy(&type, bytes.data() + header + 4, 4);
-  constexpr uint32_t json_type = 0x4E4F534A;  // "JSON"
-  if (type != json_type || length > bytes.size() - header - chunk_header) return false;
-  *chunk = JsonChunk{header + chunk_header, length};
-  return true;
-}
-
-// Key under which adapt_json_for_tinygltf keeps a Draco primitive's index
-// accessor (inside the primitive's KHR_draco_mesh_compression object).
-constexpr const char* draco_indices_key = "rayform_indices";
-
-// Two kinds of valid files that tinygltf 2.7 refuses, adapted before it sees them:
-// - a buffer that EXT_meshopt_compression marks as a fallback may have no data
-//   (no uri in a .gltf; in a .glb, no part of the BIN chunk): such buffers get
-//   one byte of data instead; every bufferView that uses them is compressed,
-//   and gltf_accessors.cpp reads the decoded bytes;
-// - a KHR_draco_mesh_compression primitive's index accessor has no bufferView:
-//   the primitive's "indices" moves into its extension object (under
-//   draco_indices_key), where decode_draco_primitive finds it.
-// Returns false (bytes untouched) when the file needed neither.
-bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb) {
-  JsonChunk chunk;
-  if (!find_json(bytes, glb, &chunk)) return false;
-  const char* text = reinterpret_cast<const char*>(bytes.data() + chunk.offset);
-  const std::string_view view(text, chunk.length);
-  if (view.find("EXT_meshopt_compression") == std::string_view::npos &&
-      view.find("KHR_draco_mesh_compression") == std::string_view::npos)
-    return false;
-  nlohmann::json j = nlohmann::json::parse(text, text + chunk.length, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return false;
-  bool changed = false;
-  auto extension = [](nlohmann::json& object, const char* name) -> nlohmann::json* {
-    if (!object.is_object() || !object.contains("extensions") || !object["extensions"].is_object() ||
-        !object["extensions"].contains(name) || !object["extensions"][name].is_object())
-      return nullptr;
-    return &object["extensions"][name];
-  };
-  if (j.contains("buffers") && j["buffers"].is_array()) {
-    for (size_t i = 0; i < j["buffers"].size(); ++i) {
-      nlohmann::json& b = j["buffers"][i];
-      if (!b.is_object() || b.contains("uri") || (glb && i == 0)) continue;
-      const nlohmann::json* ext = extension(b, "EXT_meshopt_compression");
-      if (!ext || !ext->contains("fallback") || (*ext)["fallback"] != true) continue;
-      b["uri"] = "data:application/octet-stream;base64,AA==";  // one zero byte
-      b["byteLength"] = 1;
-      changed = true;
-    }
-  }
-  if (j.contains("meshes") && j["meshes"].is_array()) {
-    for (nlohmann::json& mesh : j["meshes"]) {
-      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-      for (nlohmann::json& prim : mesh["primitives"]) {
-        nlohmann::json* draco = extension(prim, "KHR_draco_mesh_compression");
-        if (!draco || !prim.contains("indices")) continue;
-        (*draco)[draco_indices_key] = prim["indices"];
-        prim.erase("indices");
-        changed = true;
-      }
-    }
-  }
-  if (!changed) return false;
-  std::string json = j.dump();
-  if (!glb) {
-    bytes.assign(json.begin(), json.end());
-    return true;
-  }
-  while (json.size() % 4 != 0) json += ' ';
-  std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 12);
-  const uint32_t json_length = uint32_t(json.size());
-  const unsigned char* type = bytes.data() + 16;
-  out.insert(out.end(), reinterpret_cast<const unsigned char*>(&json_length),
-             reinterpret_cast<const unsigned char*>(&json_length) + 4);
-  out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), json.begin(), json.end());
-  // The chunks after the JSON one (the BIN chunk), as they were; the JSON
-  // chunk's end is padded to 4 bytes in a valid file.
-  size_t rest = chunk.offset + ((chunk.length + 3) / 4) * 4;
-  if (rest < bytes.size()) out.insert(out.end(), bytes.begin() + long(rest), bytes.end());
-  const uint32_t total = uint32_t(out.size());
-  std::memcpy(out.data() + 8, &total, 4);
-  bytes = std::move(out);
-  return true;
-}
-
-// ---- tinygltf callbacks -------------------------------------------------------
-
-// File access for tinygltf: only below the model's folder (tinygltf would
-// also look in the working directory), no path expansion.
-struct FsContext {
-  std::string base;  // the model's folder, as passed to tinygltf
-};
-
-bool fs_file_exists(const std::string& path, void* user) {
-  const FsContext* ctx = static_cast<const FsContext*>(user);
-  if (path.rfind(ctx->base + "/", 0) != 0) return false;
-  std::error_code ec;
-  return fs::is_regular_file(path, ec);
-}
-
-std::string fs_expand(const std::string& path, void*) { return path; }
-
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (err) *err += "cannot open " + path;
-    return false;
-  }
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return true;
-}
-
-bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-  if (err) *err += "writing is not supported by the reader";
-  return false;
-}
 
 // ---- the reader ---------------------------------------------------------------
 
@@ -293,10 +147,10 @@ class GltfSceneBuilder {
 
     adapt_json_for_tinygltf(bytes, glb);
 
-    FsContext fsctx;
+    GltfFileAccess fsctx;
     fsctx.base = fs::path(path_).parent_path().string();
     if (fsctx.base.empty()) fsctx.base = ".";
-    tinygltf::FsCallbacks callbacks{&fs_file_exists, &fs_expand, &fs_read, &fs_write, &fsctx};
+    tinygltf::FsCallbacks callbacks = fsctx.callbacks();
     GltfImageContext images;
     images.model = &model_;
 

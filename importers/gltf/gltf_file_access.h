@@ -1,0 +1,40 @@
+// What reaches tinygltf when a glTF file is read: the file's JSON adapted
+// first where tinygltf 2.7 refuses valid files, file access confined to the
+// model's folder, and the percent-decoding of relative URIs.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+// A relative URI's file name: %XX escapes decoded.
+std::string percent_decode(const std::string& s);
+
+bool is_data_uri(const std::string& uri);
+
+// Key under which adapt_json_for_tinygltf keeps a Draco primitive's index
+// accessor (inside the primitive's KHR_draco_mesh_compression object).
+inline constexpr const char* draco_indices_key = "rayform_indices";
+
+// Two kinds of valid files that tinygltf 2.7 refuses, adapted before it sees them:
+// - a buffer that EXT_meshopt_compression marks as a fallback may have no data
+//   (no uri in a .gltf; in a .glb, no part of the BIN chunk): such buffers get
+//   one byte of data instead; every bufferView that uses them is compressed,
+//   and gltf_accessors.cpp reads the decoded bytes;
+// - a KHR_draco_mesh_compression primitive's index accessor has no bufferView:
+//   the primitive's "indices" moves into its extension object (under
+//   draco_indices_key), where the reader's decode_draco_primitive finds it.
+// Returns false (bytes untouched) when the file needed neither.
+bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb);
+
+// File access for tinygltf: only below the model's folder (tinygltf would
+// also look in the working directory), no path expansion, no writing.
+struct GltfFileAccess {
+  std::string base;                   // the model's folder, as passed to tinygltf
+  tinygltf::FsCallbacks callbacks();  // user_data points at this object
+};
+
+}  // namespace rayform
