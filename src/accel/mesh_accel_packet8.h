@@ -41,7 +41,8 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
   struct alignas(32) Entry {
     __m256 t;  // entry distance of each ray (+infinity where it misses the box)
     uint32_t ref;
-    int rays;  // the rays that hit the box
+    int rays;   // the rays that hit the box
+    float key;  // t of the lowest of those rays: the order of visits
   };
   Entry stack[stack_size];
   int top = 0;
@@ -74,31 +75,24 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
         const __m256 hit = _mm256_cmp_ps(t0, t1, _CMP_LE_OQ);
         const int hit_rays = _mm256_movemask_ps(hit) & rays;
         if (!hit_rays) continue;
-        children[count++] = {_mm256_blendv_ps(inf8, t0, hit), n.child[c], hit_rays};
+        alignas(32) float t[8];
+        _mm256_store_ps(t, t0);
+        children[count++] = {_mm256_blendv_ps(inf8, t0, hit), n.child[c], hit_rays,
+                             t[std::countr_zero(unsigned(hit_rays))]};
       }
       if (count > 0) {
-        // Nearest first (by the entry distance of the packet's first ray that
-        // hits the child): push the others farthest first, go on with the nearest.
-        float key[WideBvhNode::width];
-        for (int i = 0; i < count; ++i) {
-          alignas(32) float t[8];
-          _mm256_store_ps(t, children[i].t);
-          key[i] = t[std::countr_zero(unsigned(children[i].rays))];
-        }
+        // Nearest first (by key): push the others farthest first, go on with the nearest.
         int nearest = 0;
         for (int i = 1; i < count; ++i)
-          if (key[i] < key[nearest]) nearest = i;
+          if (children[i].key < children[nearest].key) nearest = i;
         const int base = top;
         for (int i = 0; i < count; ++i) {
           if (i == nearest) continue;
-          Entry e = children[i];
-          float k = key[i];
+          const Entry e = children[i];
           int b = top++;
           // Insertion sort of the pushed entries, nearest on top.
           while (b > base) {
-            alignas(32) float t[8];
-            _mm256_store_ps(t, stack[b - 1].t);
-            if (!(t[std::countr_zero(unsigned(stack[b - 1].rays))] < k)) break;
+            if (!(stack[b - 1].key < e.key)) break;
             stack[b] = stack[b - 1];
             --b;
           }
