@@ -42,9 +42,16 @@ inline TriangleRay make_triangle_ray(const Ray& r) {
   return tr;
 }
 
-// Returns true and fills *hit when the ray hits the triangle with tmin < t < tmax.
-inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
-                               TriangleHit* hit) {
+// The triangle in the ray's space: vertices relative to the origin, axes
+// permuted (kz along the ray) and x, y sheared (z not yet scaled by sz), and
+// the edge functions: e0 for the edge b-c (weight of p0), e1 for c-a, e2 for
+// a-b, redone in double when one rounds to zero.
+struct ShearedTriangle {
+  vec3 a, b, c;
+  float e0, e1, e2;
+};
+
+inline ShearedTriangle shear_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2) {
   vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
   a = vec3(a[r.kx], a[r.ky], a[r.kz]);
   b = vec3(b[r.kx], b[r.ky], b[r.kz]);
@@ -55,8 +62,6 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
   b.y += r.sy * b.z;
   c.x += r.sx * c.z;
   c.y += r.sy * c.z;
-
-  // Edge functions: e0 for the edge b-c (weight of p0), e1 for c-a, e2 for a-b.
   float e0 = b.x * c.y - b.y * c.x;
   float e1 = c.x * a.y - c.y * a.x;
   float e2 = a.x * b.y - a.y * b.x;
@@ -65,6 +70,13 @@ inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, 
     e1 = float(double(c.x) * double(a.y) - double(c.y) * double(a.x));
     e2 = float(double(a.x) * double(b.y) - double(a.y) * double(b.x));
   }
+  return {a, b, c, e0, e1, e2};
+}
+
+// Returns true and fills *hit when the ray hits the triangle with tmin < t < tmax.
+inline bool intersect_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
+                               TriangleHit* hit) {
+  auto [a, b, c, e0, e1, e2] = shear_triangle(r, p0, p1, p2);
   if ((e0 < 0.f || e1 < 0.f || e2 < 0.f) && (e0 > 0.f || e1 > 0.f || e2 > 0.f)) return false;
   float det = e0 + e1 + e2;
   if (det == 0.f) return false;  // degenerate or edge-on triangle

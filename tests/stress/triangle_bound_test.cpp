@@ -20,22 +20,7 @@ namespace {
 // intersect_triangle with pbrt-v4's delta_x, delta_y (scaled max_zt): test only.
 bool pbrt_v4_bound_hits(const Ray& ray, vec3 p0, vec3 p1, vec3 p2) {
   const TriangleRay r = make_triangle_ray(ray);
-  vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-  a = vec3(a[r.kx], a[r.ky], a[r.kz]);
-  b = vec3(b[r.kx], b[r.ky], b[r.kz]);
-  c = vec3(c[r.kx], c[r.ky], c[r.kz]);
-  a.x += r.sx * a.z;
-  a.y += r.sy * a.z;
-  b.x += r.sx * b.z;
-  b.y += r.sy * b.z;
-  c.x += r.sx * c.z;
-  c.y += r.sy * c.z;
-  float e0 = b.x * c.y - b.y * c.x, e1 = c.x * a.y - c.y * a.x, e2 = a.x * b.y - a.y * b.x;
-  if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
-    e0 = float(double(b.x) * double(c.y) - double(b.y) * double(c.x));
-    e1 = float(double(c.x) * double(a.y) - double(c.y) * double(a.x));
-    e2 = float(double(a.x) * double(b.y) - double(a.y) * double(b.x));
-  }
+  auto [a, b, c, e0, e1, e2] = shear_triangle(r, p0, p1, p2);
   if ((e0 < 0.f || e1 < 0.f || e2 < 0.f) && (e0 > 0.f || e1 > 0.f || e2 > 0.f)) return false;
   const float det = e0 + e1 + e2;
   if (det == 0.f) return false;
