@@ -47,9 +47,11 @@ std::string temporary_path(const std::string& path) {
   return (target.parent_path() / tmp_name).string();
 }
 
-// Runs `write(temporary)`; on failure removes the temporary and throws.
+// Runs `write(temporary)` for a width x height x channels image; on failure
+// removes the temporary and throws.
 template <class WriteFn>
-std::string write_temporary(const std::string& path, WriteFn&& write) {
+std::string write_temporary(const std::string& path, int width, int height, int channels, WriteFn&& write) {
+  if (width <= 0 || height <= 0 || channels <= 0) throw Error(path + ": cannot write an empty image");
   const std::string tmp = temporary_path(path);
   std::string error;
   if (!write(tmp, &error)) {
@@ -65,10 +67,10 @@ std::string write_image_temporary(const std::string& path, const Image& image) {
   bool use_stb = stb_writes(ext);
   if (!use_stb && (ext.empty() || !oiio_can_write(path)))
     throw Error(path + ": cannot write images of this type (unknown extension '" + ext + "')");
-  if (image.width <= 0 || image.height <= 0 || image.channels <= 0) throw Error(path + ": cannot write an empty image");
-  return write_temporary(path, [&](const std::string& tmp, std::string* error) {
-    return use_stb ? stb_write(tmp, ext, image, error) : oiio_write(path, tmp, image, error);
-  });
+  return write_temporary(path, image.width, image.height, image.channels,
+                         [&](const std::string& tmp, std::string* error) {
+                           return use_stb ? stb_write(tmp, ext, image, error) : oiio_write(path, tmp, image, error);
+                         });
 }
 
 bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_extension(path)); }
@@ -76,9 +78,9 @@ bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_
 std::string write_image8_temporary(const std::string& path, const Image8& image) {
   std::string ext = lower_extension(path);
   if (!stb_writes_8bit(ext)) throw Error(path + ": not an 8-bit image type (bmp, png, tga, jpg)");
-  if (image.width <= 0 || image.height <= 0 || image.channels <= 0) throw Error(path + ": cannot write an empty image");
   return write_temporary(
-      path, [&](const std::string& tmp, std::string* error) { return stb_write8(tmp, ext, image, error); });
+      path, image.width, image.height, image.channels,
+      [&](const std::string& tmp, std::string* error) { return stb_write8(tmp, ext, image, error); });
 }
 
 void commit_temporary(const std::string& temporary, const std::string& path) {
