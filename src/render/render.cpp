@@ -142,23 +142,20 @@ struct PixelOut {
   vec3 albedo{0.f};
 };
 
+// One sample of an 8-bit output: sRGB-encoded when `srgb` (the quantizer of
+// ColorFormat::srgb8, fetched once per render) is given, else as it is.
+[[gnu::always_inline]] inline uint8_t quantize_sample(const SrgbQuantizer* srgb, float v) {
+  return srgb ? (*srgb)(v) : quantize_unit(v);
+}
+
 // One pixel's colour into the buffer of the chosen format.
-[[gnu::always_inline]] inline void store_color(ColorFormat format, Image& linear, Image8& quantised, uint32_t pixel,
-                                               vec3 c) {
+[[gnu::always_inline]] inline void store_color(ColorFormat format, const SrgbQuantizer* srgb, Image& linear,
+                                               Image8& quantised, uint32_t pixel, vec3 c) {
   const size_t i = size_t(pixel) * 3;
-  switch (format) {
-    case ColorFormat::linear_float:
-      for (int k = 0; k < 3; ++k) linear.pixels[i + k] = c[k];
-      break;
-    case ColorFormat::unit8:
-      for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = quantize_unit(c[k]);
-      break;
-    case ColorFormat::srgb8: {
-      const SrgbQuantizer& q = srgb_quantizer();
-      for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = q(c[k]);
-      break;
-    }
-  }
+  if (format == ColorFormat::linear_float)
+    for (int k = 0; k < 3; ++k) linear.pixels[i + k] = c[k];
+  else
+    for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = quantize_sample(srgb, c[k]);
 }
 
 template <bool Textures, bool Specular, bool Skips>
@@ -195,11 +192,25 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     const bool found = intersect_scene(p, ray, &hit);
     shade_primary(ray, found, hit, px);
   };
+  const SrgbQuantizer* srgb = o.color_format == ColorFormat::srgb8 ? &srgb_quantizer() : nullptr;
   auto store = [&](uint32_t pixel, const PixelOut& px) {
-    store_color(o.color_format, res.color, res.color8, pixel, px.color);
+    store_color(o.color_format, srgb, res.color, res.color8, pixel, px.color);
     if (o.depth) res.depth[pixel] = px.depth;
     if (o.normals) res.normals[pixel] = px.normal;
-    if (o.albedo) store_color(o.color_format, res.albedo, res.albedo8, pixel, px.albedo);
+    if (o.albedo) store_color(o.color_format, srgb, res.albedo, res.albedo8, pixel, px.albedo);
+  };
+
+  // A camera ray that hits nothing shows the background; without a cube map
+  // that is one value, whose 8-bit form is quantised once (most pixels of an
+  // asset framed by its bounds are background).
+  PixelOut background;
+  background.color = s.background.color;
+  const bool background_bytes = !p.features.cube_map && !aovs && o.color_format != ColorFormat::linear_float;
+  unsigned char background8[3] = {};
+  for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
+  auto store_miss = [&](uint32_t pixel) {
+    if (!background_bytes) return store(pixel, background);
+    std::copy(background8, background8 + 3, res.color8.pixels.begin() + size_t(pixel) * 3);
   };
 
   auto render_tile = [&](int tile) {
@@ -216,9 +227,14 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
           const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
           for (int l = 0; l < n; ++l) {
+            const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(xs + l);
+            if (!((found >> l) & 1) && !p.features.cube_map) {
+              store_miss(pixel);
+              continue;
+            }
             PixelOut px;
             shade_primary(rays[l], (found >> l) & 1, hits[l], px);
-            store(uint32_t(y) * uint32_t(width) + uint32_t(xs + l), px);
+            store(pixel, px);
           }
         }
     } else {
@@ -229,7 +245,14 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
           PixelOut px;
           if (o.spp <= 1) {
-            trace_primary(camera_ray(frame, i, j), px);
+            const Ray ray = camera_ray(frame, i, j);
+            Hit hit;
+            const bool found = intersect_scene(p, ray, &hit);
+            if (!found && !p.features.cube_map) {
+              store_miss(pixel);
+              continue;
+            }
+            shade_primary(ray, found, hit, px);
           } else {
             if (aovs) trace_primary(camera_ray(frame, i, j), px);
             vec3 sum(0.f);
@@ -314,7 +337,6 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   if (o.depth) res.depth.assign(size_t(width) * height, infinity);
   if (o.normals) res.normals.assign(size_t(width) * height, vec3(0.f));
   if (o.albedo) allocate_color(res.albedo, res.albedo8);
-  if (o.color_format == ColorFormat::srgb8) srgb_quantizer();  // built before the threads start
 
   PathChoice c = choose_path(p, o);
   // Dispatch to one of the eight compiled paths.

@@ -94,13 +94,17 @@ inline int sole_mesh_instance(const PreparedScene& p) {
 // intersect_scene gives that ray.
 inline int intersect_sole_mesh8(const PreparedScene& p, int instance, const Ray* rays, int active, Hit* hits) {
   const Instance& inst = p.instances[size_t(instance)];
-  Ray object_rays[8];
-  float tmax[8];
-  MeshHit mesh_hits[8];
-  for (int i = 0; i < 8; ++i) {
-    object_rays[i] = to_object_space(inst, rays[i]);
-    tmax[i] = object_rays[i].tmax = rays[i].tmax;
+  // Rays are copied only to transform them (a copy of eight rays through the
+  // stack costs more than the packet's whole set-up).
+  Ray transformed[8];
+  const Ray* object_rays = rays;
+  if (inst.has_transform) {
+    for (int i = 0; i < 8; ++i) transformed[i] = to_object_space(inst, rays[i]);
+    object_rays = transformed;
   }
+  float tmax[8];
+  for (int i = 0; i < 8; ++i) tmax[i] = rays[i].tmax;
+  MeshHit mesh_hits[8];
   const int found = intersect_mesh8(p.meshes[size_t(inst.shape)], object_rays, active, tmax, mesh_hits);
   for (int i = 0; i < 8; ++i)
     if ((found >> i) & 1)
