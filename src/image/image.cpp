@@ -1,6 +1,7 @@
 #include "image/image.h"
 
 #include "image/oiio_plugin.h"
+#include "image/replace_file.h"
 #include "image/stb_codec.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
@@ -85,7 +86,7 @@ std::string write_image8_temporary(const std::string& path, const Image8& image)
 
 void commit_temporary(const std::string& temporary, const std::string& path) {
   std::error_code ec;
-  fs::rename(temporary, path, ec);
+  replace_file(temporary, path, ec);
   if (ec) {
     discard_temporary(temporary);
     throw Error(path + ": cannot write image: " + ec.message());

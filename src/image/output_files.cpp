@@ -1,5 +1,6 @@
 #include "image/output_files.h"
 
+#include "image/replace_file.h"
 #include "scene/error.h"
 
 #include <algorithm>
@@ -99,7 +100,7 @@ std::vector<std::string> OutputFiles::commit() {
   std::vector<std::string> done;
   for (const auto& [from, to] : moves) {
     std::error_code ec;
-    fs::rename(from, to, ec);
+    replace_file(from, to, ec);
     if (ec) throw Error(to + ": cannot write (rename from '" + from + "' failed: " + ec.message() + ")");
     temps_.erase(std::remove(temps_.begin(), temps_.end(), from), temps_.end());
     done.push_back(to);
