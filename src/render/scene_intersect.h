@@ -98,8 +98,15 @@ inline int intersect_sole_mesh8(const PreparedScene& p, int instance, const Ray*
   // stack costs more than the packet's whole set-up).
   Ray transformed[8];
   const Ray* object_rays = rays;
-  if (inst.has_transform) {
-    for (int i = 0; i < 8; ++i) transformed[i] = to_object_space(inst, rays[i]);
+  if (inst.has_transform) {  // as to_object_space, field by field; camera rays share their origin
+    const vec3 origin0 = transform_point(inst.to_object, rays[0].origin);
+    for (int i = 0; i < 8; ++i) {
+      transformed[i].origin =
+          rays[i].origin == rays[0].origin ? origin0 : transform_point(inst.to_object, rays[i].origin);
+      transformed[i].direction = transform_vector(inst.to_object, rays[i].direction);
+      transformed[i].tmin = rays[i].tmin;
+      transformed[i].tmax = rays[i].tmax;
+    }
     object_rays = transformed;
   }
   float tmax[8];
