@@ -509,11 +509,16 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   const size_t n = indices.size() / 3;
   if (n >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
 
-  // Triangle boxes; those with empty or non-finite bounds are left out.
+  // Triangle boxes, and the root range's boxes; triangles with empty or
+  // non-finite bounds are left out.
+  struct Boxes {
+    size_t valid = 0;  // triangles with a box
+    Range root;        // over those, in index order
+  };
   std::vector<PrimRef> refs(n);
-  size_t valid = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, 1u << 14), size_t(0),
-      [&](const tbb::blocked_range<size_t>& r, size_t count) {
+  Boxes boxes = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, n, 1u << 14), Boxes{},
+      [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
           Bounds3 b;
           for (int k = 0; k < 3; ++k) b.expand(positions[indices[3 * i + k]]);
@@ -525,27 +530,22 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
           }
           p.lo[3] = std::bit_cast<float>(uint32_t(i));
           p.hi[3] = ok ? 1.f : 0.f;
-          count += ok;
+          if (ok) add(acc.root, p);
+          acc.valid += ok;
         }
-        return count;
+        return acc;
       },
-      [](size_t a, size_t b) { return a + b; });
-  if (valid != n) {
+      [](Boxes a, const Boxes& b) {
+        a.valid += b.valid;
+        a.root.geom.expand(b.root.geom);
+        a.root.cent.expand(b.root.cent);
+        return a;
+      });
+  if (boxes.valid != n) {
     refs.erase(std::remove_if(refs.begin(), refs.end(), [](const PrimRef& p) { return p.hi[3] == 0.f; }), refs.end());
   }
   if (refs.empty()) return m;
-
-  Range root = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, refs.size(), 1u << 14), Range{},
-      [&](const tbb::blocked_range<size_t>& r, Range acc) {
-        for (size_t i = r.begin(); i < r.end(); ++i) add(acc, refs[i]);
-        return acc;
-      },
-      [](Range a, const Range& b) {
-        a.geom.expand(b.geom);
-        a.cent.expand(b.cent);
-        return a;
-      });
+  Range root = boxes.root;
   root.end = uint32_t(refs.size());
 
   MeshBuilder builder(refs, options);
