@@ -27,11 +27,22 @@ namespace {
 using simd::f4;
 
 // A triangle's box, 32 bytes: lanes 0..2 of lo/hi are the box, lane 3 of lo
-// holds the triangle id (its bits), lane 3 of hi is unused.
+// holds the triangle id (its bits), lane 3 of hi the bins of its last binning
+// (see bin_bits).
 struct alignas(16) PrimRef {
   float lo[4];
   float hi[4];
   uint32_t id() const { return std::bit_cast<uint32_t>(lo[3]); }
+  // The bin on `axis` that find_split last gave this primitive.
+  uint32_t bin(int axis) const { return (std::bit_cast<uint32_t>(hi[3]) >> (bin_shift * axis)) & bin_mask; }
+
+  static constexpr int bin_shift = 6;  // bits per axis; bins < 64
+  static constexpr uint32_t bin_mask = (1u << bin_shift) - 1;
+  // hi[3] for bins b0, b1, b2: their bits under the exponent of 1.0f, so that
+  // lane 3 stays a normal float (denormals can be slow in the box arithmetic).
+  static float bin_bits(uint32_t b0, uint32_t b1, uint32_t b2) {
+    return std::bit_cast<float>(0x3f800000u | b0 | b1 << bin_shift | b2 << (2 * bin_shift));
+  }
 };
 static_assert(sizeof(PrimRef) == 32);
 
@@ -43,6 +54,12 @@ struct Box {
     hi = simd::vmax(hi, h);
   }
   void expand(const Box& b) { expand(b.lo, b.hi); }
+  // As expand, but where bounds tie (+0 and -0) the box keeps its own: the
+  // result of expanding by l, h before the items already in the box.
+  void expand_before(f4 l, f4 h) {
+    lo = simd::vmin(l, lo);
+    hi = simd::vmax(h, hi);
+  }
   // Half the surface area; 0 for an empty box.
   float half_area() const { return simd::half_area(lo, hi); }
 };
@@ -63,12 +80,22 @@ inline void add(Range& r, const PrimRef& p) {
   r.cent.expand(c, c);
 }
 
+// As add, but as if p were added before the primitives already in r's boxes.
+inline void add_before(Range& r, const PrimRef& p) {
+  f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
+  r.geom.expand_before(lo, hi);
+  f4 c = lo + hi;
+  r.cent.expand_before(c, c);
+}
+
 constexpr int max_bins = 64;
+static_assert(max_bins <= PrimRef::bin_mask + 1);
 
 struct Split {
   int axis = -1;                // -1: no SAH split (split by count)
   int nb = 0;                   // bins per axis
   int pos = 0;                  // primitives in bins <= pos go left
+  uint32_t left = 0;            // how many primitives go left
   float cost = infinity;        // SAH cost relative to a packet test
   float lo = 0.f, scale = 0.f;  // bin = (c - lo) * scale on `axis`
 };
@@ -187,20 +214,15 @@ class MeshBuilder {
     }
   }
 
-  // The bin of a doubled centroid coordinate; the same float operations for
-  // binning and partitioning.
-  static int bin_of(float c, float lo, float scale, int nb) {
-    float x = (c - lo) * scale;
-    int b = int(x);
-    return x >= 0.f ? std::min(b, nb - 1) : 0;
-  }
-
-  void bin_range(uint32_t begin, uint32_t end, const f4& clo, const f4& scale, int nb, Bins& bins) const {
+  // Bins refs_[begin, end) by their doubled centroids, and records each one's
+  // bins in it for partition.
+  void bin_range(uint32_t begin, uint32_t end, const f4& clo, const f4& scale, int nb, Bins& bins) {
     for (uint32_t i = begin; i < end; ++i) {
-      const PrimRef& p = refs_[i];
+      PrimRef& p = refs_[i];
       f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
       int b[4];
       simd::to_int_clamped((lo + hi - clo) * scale, nb - 1, b);
+      p.hi[3] = PrimRef::bin_bits(uint32_t(b[0]), uint32_t(b[1]), uint32_t(b[2]));
       for (int a = 0; a < 3; ++a) {
         bins.lo[a][b[a]] = simd::vmin(bins.lo[a][b[a]], lo);
         bins.hi[a][b[a]] = simd::vmax(bins.hi[a][b[a]], hi);
@@ -209,7 +231,9 @@ class MeshBuilder {
     }
   }
 
-  Split find_split(const Range& r, int depth) const {
+  // The best SAH split of r. Bins r's primitives, which partition(r, split)
+  // then reads: nothing may reorder r in between.
+  Split find_split(const Range& r, int depth) {
     Split best;
     if (depth > sah_depth_limit) return best;
     float clo[4], chi[4], scale[4] = {0.f, 0.f, 0.f, 0.f};
@@ -267,6 +291,7 @@ class MeshBuilder {
           best.axis = a;
           best.nb = nb;
           best.pos = i;
+          best.left = n;
           best.lo = clo[a];
           best.scale = scale[a];
         }
@@ -279,23 +304,52 @@ class MeshBuilder {
     return best;
   }
 
+  // Moves the primitives of r going left by s (bin <= s.pos, as find_split
+  // recorded) to [begin, mid) and the others to [mid, end), mid = begin +
+  // s.left, as Hoare's partition does: the k-th primitive going right in
+  // [begin, mid) from the left swaps with the k-th going left in [mid, end)
+  // from the right. Branch-free scans over blocks of positions.
+  void swap_misplaced(const Range& r, const Split& s) {
+    constexpr uint32_t block = 64;
+    const uint32_t mid = r.begin + s.left, pos = uint32_t(s.pos);
+    const int axis = s.axis;
+    uint32_t lpos[block], rpos[block];  // positions of misplaced primitives, in pairing order
+    uint32_t a = r.begin, b = r.end;    // next to scan: a upwards, b - 1 downwards
+    uint32_t nl = 0, il = 0, nr = 0, ir = 0;
+    for (;;) {
+      if (il == nl) {
+        il = nl = 0;
+        for (const uint32_t stop = a + std::min(block, mid - a); a < stop; ++a) {
+          lpos[nl] = a;
+          nl += refs_[a].bin(axis) > pos;
+        }
+      }
+      if (ir == nr) {
+        ir = nr = 0;
+        for (const uint32_t stop = b - std::min(block, b - mid); b > stop; --b) {
+          rpos[nr] = b - 1;
+          nr += refs_[b - 1].bin(axis) <= pos;
+        }
+      }
+      const uint32_t k = std::min(nl - il, nr - ir);
+      for (uint32_t t = 0; t < k; ++t) std::swap(refs_[lpos[il + t]], refs_[rpos[ir + t]]);
+      il += k;
+      ir += k;
+      if ((il == nl && a == mid) || (ir == nr && b == mid)) break;
+    }
+  }
+
   // Splits r by s (or, without a SAH split, by count) into two non-empty ranges.
   std::pair<Range, Range> partition(const Range& r, const Split& s) {
     Range left, right;
-    uint32_t mid = r.begin;
-    if (s.axis >= 0) {
-      const int axis = s.axis;
-      auto goes_left = [&](const PrimRef& p) { return bin_of(p.lo[axis] + p.hi[axis], s.lo, s.scale, s.nb) <= s.pos; };
-      uint32_t i = r.begin, j = r.end;
-      for (;;) {
-        while (i < j && goes_left(refs_[i])) add(left, refs_[i++]);
-        while (i < j && !goes_left(refs_[j - 1])) add(right, refs_[--j]);
-        if (i >= j) break;
-        std::swap(refs_[i], refs_[j - 1]);
-      }
-      mid = i;
-    }
-    if (s.axis < 0 || mid == r.begin || mid == r.end) {
+    uint32_t mid = r.begin + s.left;
+    if (s.axis >= 0 && mid != r.begin && mid != r.end) {
+      swap_misplaced(r, s);
+      // The boxes as Hoare's partition accumulates them: [begin, mid) upwards,
+      // [mid, end) downwards (which only matters where +0 and -0 tie).
+      for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
+      for (uint32_t i = mid; i < r.end; ++i) add_before(right, refs_[i]);
+    } else {
       // By count, at the median of the widest centroid axis when there is one.
       mid = r.begin + r.count() / 2;
       float clo[4], chi[4];
@@ -310,8 +364,6 @@ class MeshBuilder {
                            float ca = a.lo[axis] + a.hi[axis], cb = b.lo[axis] + b.hi[axis];
                            return ca < cb || (ca == cb && a.id() < b.id());
                          });
-      left = Range{};
-      right = Range{};
       for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
       for (uint32_t i = mid; i < r.end; ++i) add(right, refs_[i]);
     }
@@ -457,11 +509,16 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   const size_t n = indices.size() / 3;
   if (n >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
 
-  // Triangle boxes; those with empty or non-finite bounds are left out.
+  // Triangle boxes, and the root range's boxes; triangles with empty or
+  // non-finite bounds are left out.
+  struct Boxes {
+    size_t valid = 0;  // triangles with a box
+    Range root;        // over those, in index order
+  };
   std::vector<PrimRef> refs(n);
-  size_t valid = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, 1u << 14), size_t(0),
-      [&](const tbb::blocked_range<size_t>& r, size_t count) {
+  Boxes boxes = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, n, 1u << 14), Boxes{},
+      [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
           Bounds3 b;
           for (int k = 0; k < 3; ++k) b.expand(positions[indices[3 * i + k]]);
@@ -473,27 +530,22 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
           }
           p.lo[3] = std::bit_cast<float>(uint32_t(i));
           p.hi[3] = ok ? 1.f : 0.f;
-          count += ok;
+          if (ok) add(acc.root, p);
+          acc.valid += ok;
         }
-        return count;
+        return acc;
       },
-      [](size_t a, size_t b) { return a + b; });
-  if (valid != n) {
+      [](Boxes a, const Boxes& b) {
+        a.valid += b.valid;
+        a.root.geom.expand(b.root.geom);
+        a.root.cent.expand(b.root.cent);
+        return a;
+      });
+  if (boxes.valid != n) {
     refs.erase(std::remove_if(refs.begin(), refs.end(), [](const PrimRef& p) { return p.hi[3] == 0.f; }), refs.end());
   }
   if (refs.empty()) return m;
-
-  Range root = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, refs.size(), 1u << 14), Range{},
-      [&](const tbb::blocked_range<size_t>& r, Range acc) {
-        for (size_t i = r.begin(); i < r.end(); ++i) add(acc, refs[i]);
-        return acc;
-      },
-      [](Range a, const Range& b) {
-        a.geom.expand(b.geom);
-        a.cent.expand(b.cent);
-        return a;
-      });
+  Range root = boxes.root;
   root.end = uint32_t(refs.size());
 
   MeshBuilder builder(refs, options);
