@@ -2,6 +2,7 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "read_flags.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
 #include "scene/scene_stats.h"
@@ -20,6 +21,7 @@ struct ConvertArgs {
   SaveOptions save;
   bool tessellate_only = false;
   bool stats = false;
+  ReadFlags read;
 };
 
 // One line of counts for --stats (and the conversion tests).
@@ -39,7 +41,9 @@ void run_convert(const ConvertArgs& a) {
   if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
     throw Error(a.output + ": the output is the input file; choose another name");
   scene_format_from_path(a.output);  // unknown output extension: fail before reading
-  LoadedScene loaded = load_scene(a.input, LoadOptions{dialect_from_string(a.dialect)});
+  LoadOptions lo{dialect_from_string(a.dialect)};
+  apply_read_flags(a.read, lo);
+  LoadedScene loaded = load_scene(a.input, lo);
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
 
   SaveOptions o = a.save;
@@ -82,6 +86,7 @@ void add_convert_command(CLI::App& app) {
   c->add_flag("--tessellate-only", a->tessellate_only,
               "glTF: spheres and planes as meshes only, without their exact form in extras");
   c->add_flag("--stats", a->stats, "Print the counts of the scene read and the files written on stdout");
+  add_read_flags(*c, a->read);
   c->footer(R"(
 Examples:
   rayform convert scene01_plane.txt scene01.glb

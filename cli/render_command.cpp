@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "course_args.h"
+#include "read_flags.h"
 #include "render_job.h"
 
 #include <memory>
@@ -61,6 +62,7 @@ vec3 parse_vec3(const std::string& s, const char* option) {
 
 struct RenderArgs {
   RenderJob job;
+  ReadFlags read;
   std::string size = std::to_string(RenderOptions{}.width) + "x" + std::to_string(RenderOptions{}.height);
   std::string depth, dialect, filter = "box", color = "auto";
   std::string look_from, look_at, up, background;
@@ -105,6 +107,7 @@ void add_render_command(CLI::App& app) {
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
+  add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
@@ -121,6 +124,10 @@ void add_render_command(CLI::App& app) {
     if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
     if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
     if (a->fov != 0.f) a->job.fov = a->fov;
+    LoadOptions read;
+    apply_read_flags(a->read, read);
+    a->job.limits = read.limits;
+    a->job.access = read.access;
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);

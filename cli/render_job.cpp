@@ -88,6 +88,8 @@ void run_render_job(const RenderJob& job) {
   lo.dialect = job.dialect;
   lo.flat_normals = job.flat_normals;
   lo.gltf_scene = job.gltf_scene;
+  lo.limits = job.limits;
+  lo.access = job.access;
   LoadedScene loaded = load_scene(job.input, lo);
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   // Asset files often carry neither camera nor light (a course scene always has
@@ -102,7 +104,9 @@ void run_render_job(const RenderJob& job) {
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
   auto t_prepare = clock::now();
-  PreparedScene prepared = prepare_scene(loaded.scene);
+  PrepareOptions po;
+  po.limits = job.limits;
+  PreparedScene prepared = prepare_scene(loaded.scene, po);
   double prepare_s = seconds_since(t_prepare);
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;

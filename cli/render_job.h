@@ -35,6 +35,8 @@ struct RenderJob {
   bool stats = false;         // print timings and counts on stderr
   bool flat_normals = false;  // OBJ: missing normals faceted
   int gltf_scene = -1;        // glTF: scene index (-1: default)
+  Limits limits;              // what the scene may claim (--limit), for loading and preparing
+  FileAccess access;          // --confine
 };
 
 // Runs the job; throws rayform::Error with a message for the user.

@@ -13,27 +13,45 @@ SceneFormat scene_format_from_path(const std::string& path) {
   throw Error(path + ": unknown scene format '" + ext + "': expected .txt (course), .obj, .gltf or .glb");
 }
 
-LoadedScene load_scene(const std::string& path, const LoadOptions& options) {
+namespace {
+LoadedScene read_scene(const std::string& path, const LoadOptions& options) {
   LoadedScene out;
   out.format = scene_format_from_path(path);
   switch (out.format) {
     case SceneFormat::course_txt: {
-      CourseScene cs = read_course_scene(path, CourseReadOptions{options.dialect});
+      CourseScene cs = read_course_scene(path, CourseReadOptions{options.dialect, options.access});
       out.scene = std::move(cs.scene);
       out.dialect = cs.dialect;
       out.warnings = std::move(cs.warnings);
       return out;
     }
     case SceneFormat::obj:
-      out.scene = read_obj_scene(path, ObjReadOptions{options.flat_normals}, &out.warnings);
+      out.scene = read_obj_scene(path, ObjReadOptions{options.flat_normals, options.access}, &out.warnings);
       return out;
     case SceneFormat::gltf: {
       GltfReadOptions gltf;
       gltf.scene = options.gltf_scene;
+      gltf.limits = options.limits;
+      gltf.access = options.access;
       out.scene = read_gltf_scene(path, gltf, &out.warnings, &out.extensions);
       return out;
     }
   }
+  return out;
+}
+}  // namespace
+
+LoadedScene load_scene(const std::string& path, const LoadOptions& options) {
+  LoadedScene out = read_scene(path, options);
+  uint64_t triangles = out.scene.triangles.size(), vertices = 3 * out.scene.triangles.size();
+  for (const Mesh& m : out.scene.meshes) {
+    triangles += m.triangle_count();
+    vertices += m.positions.size();
+  }
+  if (triangles > options.limits.triangles)
+    throw Error(path + ": " + limit_exceeded("triangles", triangles, options.limits.triangles));
+  if (vertices > options.limits.vertices)
+    throw Error(path + ": " + limit_exceeded("vertices", vertices, options.limits.vertices));
   return out;
 }
 

@@ -4,6 +4,8 @@
 #include "course_txt/course_reader.h"
 #include "gltf/gltf_reader.h"
 #include "obj/obj_reader.h"
+#include "referenced_files.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 #include <optional>
@@ -18,6 +20,8 @@ struct LoadOptions {
   std::optional<CourseDialect> dialect;  // course scenes only (keep first: callers brace-initialise it)
   bool flat_normals = false;             // OBJ: normals missing from the file are faceted, not smooth
   int gltf_scene = -1;                   // glTF: the scene to load; -1: the file's default scene
+  Limits limits{};                       // checked while reading and, for the totals, after
+  FileAccess access{};                   // the files a scene names
 };
 
 struct LoadedScene {
@@ -28,7 +32,8 @@ struct LoadedScene {
   std::vector<ExtensionUse> extensions;  // glTF: the extensions the file names, and how each was used
 };
 
-// Throws rayform::Error for an unknown extension or a bad file.
+// Throws rayform::Error for an unknown extension, a bad file, or a scene
+// beyond options.limits (triangles and vertices of all meshes).
 SceneFormat scene_format_from_path(const std::string& path);
 LoadedScene load_scene(const std::string& path, const LoadOptions& options = {});
 

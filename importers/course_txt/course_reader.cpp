@@ -17,8 +17,8 @@ namespace {
 
 class CourseParser {
  public:
-  CourseParser(std::string_view text, const std::string& path, CourseDialect dialect)
-      : tokens_(text, path), path_(path), dialect_(dialect) {}
+  CourseParser(std::string_view text, const std::string& path, CourseDialect dialect, const FileAccess& access)
+      : tokens_(text, path), path_(path), dialect_(dialect), access_(access) {}
 
   CourseScene parse() {
     CourseScene out;
@@ -182,6 +182,7 @@ class CourseParser {
       fs::path f = dir / (std::string(faces[i]) + ".png");
       if (!fs::exists(f))
         tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
+      check_access(t, "cube map face", (fs::path(t.text) / f.filename()).string(), f);
       Texture tex;
       tex.name = faces[i];
       tex.path = f.string();
@@ -219,6 +220,7 @@ class CourseParser {
 
   int texture(const Token& file) {
     fs::path p = resolve(file, file.text, "texture");
+    check_access(file, "texture", file.text, p);
     auto it = texture_cache_.find(p.string());
     if (it != texture_cache_.end()) return it->second;
     Texture t;
@@ -233,7 +235,8 @@ class CourseParser {
     return index;
   }
 
-  // Path relative to the scene file's folder, then to the working directory.
+  // Path relative to the scene file's folder, then (not confined) to the
+  // working directory.
   fs::path resolve(const Token& t, const std::string& name, const char* what) {
     fs::path p(name);
     if (p.is_absolute()) {
@@ -241,10 +244,16 @@ class CourseParser {
     } else {
       fs::path beside = fs::path(path_).parent_path() / p;
       if (fs::exists(beside)) return beside;
-      if (fs::exists(p)) return p;
+      if (!access_.confine && fs::exists(p)) return p;
     }
-    tokens_.fail(t, std::string("cannot find ") + what + " '" + name +
-                        "' (looked beside the scene file and in the working directory)");
+    tokens_.fail(t, std::string("cannot find ") + what + " '" + name + "' (looked beside the scene file" +
+                        (access_.confine ? ")" : " and in the working directory)"));
+  }
+
+  // A file the scene names, before it is read (referenced_files.h).
+  void check_access(const Token& t, const char* what, const std::string& name, const fs::path& resolved) {
+    if (std::string problem = referenced_file_problem(path_, what, name, resolved, access_); !problem.empty())
+      tokens_.fail(t, problem);
   }
 
   int add_node(Node n) {
@@ -410,6 +419,7 @@ class CourseParser {
 
   int load_mesh(const Token& file) {
     fs::path p = resolve(file, file.text, "mesh file");
+    check_access(file, "mesh file", file.text, p);
     std::string key = fs::weakly_canonical(p).string();
     auto it = mesh_cache_.find(key);
     if (it != mesh_cache_.end()) return it->second;
@@ -429,6 +439,7 @@ class CourseParser {
   CourseTokenizer tokens_;
   std::string path_;
   CourseDialect dialect_;
+  FileAccess access_;
   Scene scene_;
   std::vector<std::string> warnings_;
   bool declared_no_lights_ = false;
@@ -445,7 +456,7 @@ CourseScene parse_course_scene(std::string_view text, const std::string& path, c
   CourseDialect dialect = options.dialect
                               ? *options.dialect
                               : (course_text_uses_2019_keywords(text) ? CourseDialect::v2019 : CourseDialect::v2012);
-  return CourseParser(text, path, dialect).parse();
+  return CourseParser(text, path, dialect, options.access).parse();
 }
 
 CourseScene read_course_scene(const std::string& path, const CourseReadOptions& options) {

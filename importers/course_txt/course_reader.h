@@ -4,6 +4,7 @@
 #pragma once
 
 #include "course_txt/course_dialect.h"
+#include "referenced_files.h"
 #include "scene/scene.h"
 
 #include <optional>
@@ -17,6 +18,7 @@ struct CourseReadOptions {
   // The dialect to use; when unset it is 2019 if the scene uses `falloff` or
   // `bump`, else 2012.
   std::optional<CourseDialect> dialect;
+  FileAccess access{};  // meshes and textures the scene names
 };
 
 struct CourseScene {
@@ -26,7 +28,8 @@ struct CourseScene {
 };
 
 // Reads a scene file. Relative mesh and texture paths resolve against the
-// scene file's folder, then the working directory. Throws rayform::Error.
+// scene file's folder, then (not under FileAccess::confine) the working
+// directory. Throws rayform::Error.
 CourseScene read_course_scene(const std::string& path, const CourseReadOptions& options = {});
 
 // Parses scene text; `path` names it in messages and anchors relative paths.

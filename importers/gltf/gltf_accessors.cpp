@@ -2,6 +2,7 @@
 
 #include "gltf/gltf_compression.h"
 #include "scene/error.h"
+#include "scene/limits.h"
 
 #include <algorithm>
 #include <cstring>
@@ -275,10 +276,12 @@ void GltfAccessors::read_elements(const tinygltf::Accessor& acc, const std::stri
                                   Put&& put) {
   const int cs = component_size(acc.componentType);
   const size_t elem = size_t(cs) * size_t(nc);
-  // Without a bufferView the elements are zeros (sparse may then set some);
-  // bound the count so a lying file cannot make us allocate without limit.
-  if (acc.count > max_accessor_elements) fail(aw + ": count " + std::to_string(acc.count) + " is implausibly large");
+  // Without a bufferView the elements are zeros (sparse may then set some):
+  // nothing in the file bounds the count but the limit.
   if (acc.bufferView == -1) {
+    if (acc.count > max_unbacked_elements_)
+      fail(aw + ": count " + std::to_string(acc.count) +
+           " without a bufferView: " + limit_exceeded("vertices", acc.count, max_unbacked_elements_));
     alloc(acc.count);
   } else {
     View bytes = view(acc.bufferView, aw + ".bufferView");

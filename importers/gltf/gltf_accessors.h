@@ -48,10 +48,6 @@ inline constexpr uint32_t formats_morph_delta =
 // EXT_mesh_gpu_instancing: ROTATION may be normalized (as gltfpack writes it).
 inline constexpr uint32_t formats_rotation = format_float | format_snorm8 | format_snorm16;
 
-// The largest element count an accessor may declare (2^28): bounds what a
-// lying file can make the reader allocate before the bytes are checked.
-inline constexpr size_t max_accessor_elements = size_t(1) << 28;
-
 // A component of type `component_type` as float, normalised or not.
 float gltf_component_value(const unsigned char* p, int component_type, bool normalized);
 // An integer component's value (as float) normalised as its type says: the
@@ -64,8 +60,12 @@ const char* gltf_type_name(int type);
 
 class GltfAccessors {
  public:
-  // `file` prefixes every error message.
-  GltfAccessors(const tinygltf::Model& model, std::string file) : model_(model), file_(std::move(file)) {}
+  // `file` prefixes every error message. An accessor backed by bytes is
+  // bounded by them; one without a bufferView (zeros, perhaps with sparse
+  // values) may hold at most `max_unbacked_elements` (Limits::vertices): a
+  // 432-byte file could otherwise ask for gigabytes of zeros.
+  GltfAccessors(const tinygltf::Model& model, std::string file, uint64_t max_unbacked_elements)
+      : model_(model), file_(std::move(file)), max_unbacked_elements_(max_unbacked_elements) {}
 
   // Accessor `a`; `where` names the reference to it.
   const tinygltf::Accessor& accessor(int a, const std::string& where) const;
@@ -105,6 +105,7 @@ class GltfAccessors {
 
   const tinygltf::Model& model_;
   std::string file_;
+  uint64_t max_unbacked_elements_;
   std::map<int, std::vector<uint8_t>> decoded_views_;  // EXT_meshopt_compression, per bufferView
 };
 

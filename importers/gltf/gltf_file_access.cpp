@@ -51,18 +51,61 @@ bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chu
   return true;
 }
 
+}  // namespace
+
+std::string json_too_deep(const std::vector<unsigned char>& bytes, bool glb, uint64_t max_depth) {
+  JsonChunk chunk;
+  if (!find_json(bytes, glb, &chunk)) return "";  // tinygltf reports the broken container
+  uint64_t depth = 0, line = 1;
+  size_t line_start = chunk.offset;
+  bool in_string = false;
+  for (size_t i = chunk.offset; i < chunk.offset + chunk.length; ++i) {
+    const unsigned char c = bytes[i];
+    if (in_string) {
+      if (c == '\\') ++i;  // the escaped character cannot end the string
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return "line " + std::to_string(line) + ", column " + std::to_string(i - line_start + 1);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return "";
+}
+
+namespace {
+
 // ---- tinygltf callbacks -------------------------------------------------------
 
+// Whether the file may be read (tinygltf asks before it reads): joined to the
+// model's folder and passing referenced_file_problem; the first refusal is
+// kept for the reader's message.
 bool fs_file_exists(const std::string& path, void* user) {
-  const GltfFileAccess* ctx = static_cast<const GltfFileAccess*>(user);
+  GltfFileAccess* ctx = static_cast<GltfFileAccess*>(user);
   if (path.rfind(ctx->base + "/", 0) != 0) return false;
+  const std::string name = path.substr(ctx->base.size() + 1);
+  if (std::string problem = referenced_file_problem(ctx->scene_file, "uri", name, path, ctx->access);
+      !problem.empty()) {
+    if (ctx->problem.empty()) ctx->problem = problem;
+    return false;
+  }
   std::error_code ec;
   return fs::is_regular_file(path, ec);
 }
 
 std::string fs_expand(const std::string& path, void*) { return path; }
 
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  if (!fs_file_exists(path, user)) {
+    if (err) *err += "cannot read " + path;
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     if (err) *err += "cannot open " + path;

@@ -3,8 +3,11 @@
 // model's folder, and the percent-decoding of relative URIs.
 #pragma once
 
+#include "referenced_files.h"
+
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,10 +33,20 @@ inline constexpr const char* draco_indices_key = "rayform_indices";
 // Returns false (bytes untouched) when the file needed neither.
 bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb);
 
-// File access for tinygltf: only below the model's folder (tinygltf would
-// also look in the working directory), no path expansion, no writing.
+// Where the JSON of a .gltf (or a .glb's JSON chunk) first nests arrays and
+// objects deeper than `max_depth`: "line L, column C" (of the JSON text), or
+// "" when it never does. Checked before tinygltf parses the file: its parser
+// recurses once per level (20 000 nested arrays overflow the stack).
+std::string json_too_deep(const std::vector<unsigned char>& bytes, bool glb, uint64_t max_depth);
+
+// File access for tinygltf: only names joined to the model's folder (tinygltf
+// would also look in the working directory), each checked by
+// referenced_file_problem before it is opened, no path expansion, no writing.
 struct GltfFileAccess {
-  std::string base;                   // the model's folder, as passed to tinygltf
+  std::string base;        // the model's folder, as passed to tinygltf
+  std::string scene_file;  // the .gltf/.glb, for referenced_file_problem
+  FileAccess access;
+  std::string problem;                // the first file refused, for the reader's message
   tinygltf::FsCallbacks callbacks();  // user_data points at this object
 };
 

@@ -77,7 +77,7 @@ struct Primitive {
 class GltfSceneBuilder {
  public:
   GltfSceneBuilder(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings)
-      : path_(path), options_(options), warnings_(warnings), accessors_(model_, path) {}
+      : path_(path), options_(options), warnings_(warnings), accessors_(model_, path, options.limits.vertices) {}
 
   Scene build(std::vector<ExtensionUse>* extensions) {
     load();
@@ -96,7 +96,9 @@ class GltfSceneBuilder {
     Node root;
     root.kind = Node::Kind::group;
     root.name = fs::path(path_).stem().string();
-    for (const auto& [node, ref] : root_nodes()) root.children.push_back(convert_node(node, ref, mat4(1.f)));
+    const std::vector<std::pair<int, std::string>> roots = root_nodes();
+    check_node_trees(roots);
+    for (const auto& [node, ref] : roots) root.children.push_back(convert_node(node, ref, mat4(1.f)));
     // Skinned meshes, posed in world space (see convert_node).
     root.children.insert(root.children.end(), world_space_shapes_.begin(), world_space_shapes_.end());
     scene_.nodes.push_back(std::move(root));
@@ -145,11 +147,16 @@ class GltfSceneBuilder {
         fail("not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
     }
 
+    if (const std::string at = json_too_deep(bytes, glb, options_.limits.json_depth); !at.empty())
+      fail(std::string(glb ? "JSON chunk, " : "") + at + ": arrays and objects nest more than " +
+           std::to_string(options_.limits.json_depth) + " levels deep (raise the limit with --limit json-depth=N)");
     adapt_json_for_tinygltf(bytes, glb);
 
     GltfFileAccess fsctx;
     fsctx.base = fs::path(path_).parent_path().string();
     if (fsctx.base.empty()) fsctx.base = ".";
+    fsctx.scene_file = path_;
+    fsctx.access = options_.access;
     tinygltf::FsCallbacks callbacks = fsctx.callbacks();
     GltfImageContext images;
     images.model = &model_;
@@ -162,6 +169,7 @@ class GltfSceneBuilder {
         glb ? loader.LoadBinaryFromMemory(&model_, &err, &warn_text, bytes.data(), unsigned(bytes.size()), fsctx.base)
             : loader.LoadASCIIFromString(&model_, &err, &warn_text, reinterpret_cast<const char*>(bytes.data()),
                                          unsigned(bytes.size()), fsctx.base);
+    if (!fsctx.problem.empty()) fail(fsctx.problem);
     if (!ok) diagnose_load_failure(bytes, glb, err);
     for (const std::string& w : images.warnings) warn(w);
     ktx2_images_.insert(images.ktx2_images.begin(), images.ktx2_images.end());
@@ -307,6 +315,67 @@ class GltfSceneBuilder {
 
   // ---- nodes ----------------------------------------------------------------
 
+  // A node that is its own ancestor, found by one depth-first pass over the
+  // graph from the roots, then from every node (an explicit stack: the graph
+  // may be thousands of levels deep; convert_node refuses those).
+  void check_no_cycle(const std::vector<std::pair<int, std::string>>& roots) {
+    enum : uint8_t { unseen, open, done };
+    std::vector<uint8_t> state(model_.nodes.size(), unseen);
+    std::vector<std::pair<int, size_t>> stack;  // node, next child to visit
+    auto visit = [&](int start) {
+      if (start < 0 || size_t(start) >= state.size() || state[size_t(start)] != unseen) return;
+      state[size_t(start)] = open;
+      stack.emplace_back(start, 0);
+      while (!stack.empty()) {
+        auto& [node, next] = stack.back();
+        const std::vector<int>& children = model_.nodes[size_t(node)].children;
+        if (next == children.size()) {
+          state[size_t(node)] = done;
+          stack.pop_back();
+          continue;
+        }
+        const size_t k = next++;
+        const int c = children[k];
+        if (c < 0 || size_t(c) >= state.size()) continue;  // convert_node names the bad index
+        if (state[size_t(c)] == open)
+          fail(idx("nodes", node) + "." + idx("children", long(k)) + ": " + idx("nodes", c) +
+               " is its own ancestor (recursive node graph)");
+        if (state[size_t(c)] == unseen) {
+          state[size_t(c)] = open;
+          stack.emplace_back(c, 0);
+        }
+      }
+    };
+    for (const auto& root : roots) visit(root.first);
+    for (size_t i = 0; i < model_.nodes.size(); ++i) visit(int(i));
+  }
+
+  // glTF node hierarchies are disjoint trees (the specification): no node has
+  // two parents, and a scene lists root nodes, each once. A file that breaks
+  // this is refused: drawing each path through a shared node would multiply
+  // the shapes (40 levels of two parents: 2^40 of them).
+  void check_node_trees(const std::vector<std::pair<int, std::string>>& roots) {
+    check_no_cycle(roots);
+    std::vector<int> parent(model_.nodes.size(), invalid);
+    for (size_t p = 0; p < model_.nodes.size(); ++p)
+      for (int c : model_.nodes[p].children) {
+        if (c < 0 || size_t(c) >= parent.size()) continue;  // convert_node names the bad index
+        if (parent[size_t(c)] != invalid && parent[size_t(c)] != int(p))
+          fail(idx("nodes", c) + ": has two parents, " + idx("nodes", parent[size_t(c)]) + " and " +
+               idx("nodes", long(p)) + " (a glTF node hierarchy must be a tree)");
+        if (parent[size_t(c)] == int(p)) fail(idx("nodes", long(p)) + ".children: names " + idx("nodes", c) + " twice");
+        parent[size_t(c)] = int(p);
+      }
+    std::vector<uint8_t> listed(model_.nodes.size(), 0);
+    for (const auto& [node, ref] : roots) {
+      if (node < 0 || size_t(node) >= parent.size()) continue;
+      if (parent[size_t(node)] != invalid)
+        fail(ref + ": " + idx("nodes", node) + " is a child of " + idx("nodes", parent[size_t(node)]) +
+             " (a scene lists root nodes only)");
+      if (listed[size_t(node)]++) fail(ref + ": " + idx("nodes", node) + " is listed twice");
+    }
+  }
+
   mat4 node_matrix(const tinygltf::Node& n, const std::string& where) {
     auto check = [&](const std::vector<double>& v, size_t want, const char* name) {
       if (!v.empty() && v.size() != want)
@@ -354,7 +423,7 @@ class GltfSceneBuilder {
            std::to_string(model_.nodes.size()) + " nodes)");
     const std::string where = idx("nodes", i);
     if (on_path_[size_t(i)]) fail(ref + ": " + where + " is its own ancestor (recursive node graph)");
-    if (nodes_[size_t(i)] != invalid) return nodes_[size_t(i)];  // a second parent: share the subtree
+    if (nodes_[size_t(i)] != invalid) fail(ref + ": " + where + " is reached twice");  // check_node_trees refused it
     on_path_[size_t(i)] = 1;
     const tinygltf::Node& n = model_.nodes[size_t(i)];
     Node out;

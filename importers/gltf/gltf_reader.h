@@ -34,6 +34,8 @@
 #pragma once
 
 #include "gltf/gltf_material.h"
+#include "referenced_files.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 #include <string>
@@ -42,7 +44,9 @@
 namespace rayform {
 
 struct GltfReadOptions {
-  int scene = -1;  // index into the file's scenes; -1: its default scene (or scene 0)
+  int scene = -1;       // index into the file's scenes; -1: its default scene (or scene 0)
+  Limits limits{};      // json_depth, vertices (accessors without data)
+  FileAccess access{};  // buffers and images the file names
 };
 
 // Reads a .gltf or .glb file (the content decides, not the extension).

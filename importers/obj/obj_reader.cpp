@@ -362,6 +362,9 @@ class ObjSceneBuilder {
                "'; its materials are replaced by the default material");
           continue;
         }
+        if (std::string problem = referenced_file_problem(path_, "mtllib", name, r.path, options_.access);
+            !problem.empty())
+          throw Error(where + ": " + problem);
         if (r.by_name_only)
           warn(where + ": material library '" + name + "' not found as written; using " + r.path.string());
         std::error_code ec;
@@ -406,6 +409,8 @@ class ObjSceneBuilder {
            mtl_dir.string() + "); the material has no " + slot + " texture");
       return invalid;
     }
+    if (std::string problem = referenced_file_problem(path_, slot, name, r.path, options_.access); !problem.empty())
+      throw Error(path_ + ": material '" + material + "': " + problem);
     if (r.by_name_only)
       warn(path_ + ": material '" + material + "': " + slot + " texture '" + name + "' not found as written; using " +
            r.path.string());

@@ -26,6 +26,7 @@
 // positions, no faces at all.
 #pragma once
 
+#include "referenced_files.h"
 #include "scene/scene.h"
 
 #include <string>
@@ -34,7 +35,8 @@
 namespace rayform {
 
 struct ObjReadOptions {
-  bool flat = false;  // normals missing from the file: faceted instead of smooth
+  bool flat = false;    // normals missing from the file: faceted instead of smooth
+  FileAccess access{};  // .mtl files and textures the file names
 };
 
 // Reads an OBJ file (and the .mtl files it names). Warnings, if wanted, are

@@ -68,20 +68,23 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
 
   // Flatten the hierarchy.
   std::vector<uint8_t> mesh_used(scene.meshes.size(), 0);
-  for_each_shape_node(scene, [&](const Node& n, const mat4& to_world) {
-    if (n.shape < 0 || n.shape >= shape_count(scene, n.shape_kind))
-      throw Error("scene: node '" + n.name + "' references a missing shape");
-    Instance inst;
-    inst.kind = n.shape_kind;
-    inst.shape = n.shape;
-    inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
-    inst.has_transform = !is_identity(to_world);
-    inst.to_world = to_world;
-    inst.to_object = glm::inverse(to_world);
-    inst.normal_to_world = glm::transpose(mat3(inst.to_object));
-    if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
-    p.instances.push_back(inst);
-  });
+  for_each_shape_node(
+      scene,
+      [&](const Node& n, const mat4& to_world) {
+        if (n.shape < 0 || n.shape >= shape_count(scene, n.shape_kind))
+          throw Error("scene: node '" + n.name + "' references a missing shape");
+        Instance inst;
+        inst.kind = n.shape_kind;
+        inst.shape = n.shape;
+        inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
+        inst.has_transform = !is_identity(to_world);
+        inst.to_world = to_world;
+        inst.to_object = glm::inverse(to_world);
+        inst.normal_to_world = glm::transpose(mat3(inst.to_object));
+        if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
+        p.instances.push_back(inst);
+      },
+      options.limits.instances);
 
   // Build each used mesh once, however often it is instanced.
   p.meshes.resize(scene.meshes.size());

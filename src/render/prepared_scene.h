@@ -7,6 +7,7 @@
 #include "accel/bvh.h"
 #include "accel/mesh_accel.h"
 #include "render/texture_sampler.h"
+#include "scene/limits.h"
 #include "scene/node_walk.h"
 #include "scene/scene.h"
 
@@ -56,6 +57,7 @@ PreparedLight prepare_light(const Light& light);
 
 struct PrepareOptions {
   BvhBuildOptions bvh;
+  Limits limits{};  // instances: checked before flattening; texture_texels: before decoding
 };
 
 struct PreparedScene {

@@ -6,7 +6,7 @@
 
 namespace rayform {
 
-SceneStats scene_stats(const Scene& scene) {
+SceneStats scene_stats(const Scene& scene, uint64_t max_instances) {
   SceneStats st;
   st.nodes = scene.nodes.size();
   st.spheres = scene.spheres.size();
@@ -21,37 +21,40 @@ SceneStats scene_stats(const Scene& scene) {
   // Object-space bounds of each mesh, computed once however many instances use it.
   std::vector<Bounds3> mesh_bounds(scene.meshes.size());
   std::vector<uint8_t> mesh_bounded(scene.meshes.size(), 0);
-  for_each_shape_node(scene, [&](const Node& n, const mat4& m) {
-    st.instances++;
-    switch (n.shape_kind) {
-      case ShapeKind::sphere: {
-        if (n.shape < 0 || n.shape >= int(scene.spheres.size())) break;
-        const Sphere& s = scene.spheres[n.shape];
-        Bounds3 b;
-        b.expand(s.center - vec3(std::abs(s.radius)));
-        b.expand(s.center + vec3(std::abs(s.radius)));
-        st.bounds.expand(transform_bounds(m, b));
-        break;
-      }
-      case ShapeKind::triangle:
-        if (n.shape < 0 || n.shape >= int(scene.triangles.size())) break;
-        for (const vec3& v : scene.triangles[n.shape].vertices) st.bounds.expand(transform_point(m, v));
-        break;
-      case ShapeKind::mesh: {
-        if (n.shape < 0 || n.shape >= int(scene.meshes.size())) break;
-        const Mesh& mesh = scene.meshes[n.shape];
-        st.mesh_triangles += mesh.triangle_count();
-        Bounds3& b = mesh_bounds[size_t(n.shape)];
-        if (!mesh_bounded[size_t(n.shape)]) {
-          for (const vec3& v : mesh.positions) b.expand(v);
-          mesh_bounded[size_t(n.shape)] = 1;
+  for_each_shape_node(
+      scene,
+      [&](const Node& n, const mat4& m) {
+        st.instances++;
+        switch (n.shape_kind) {
+          case ShapeKind::sphere: {
+            if (n.shape < 0 || n.shape >= int(scene.spheres.size())) break;
+            const Sphere& s = scene.spheres[n.shape];
+            Bounds3 b;
+            b.expand(s.center - vec3(std::abs(s.radius)));
+            b.expand(s.center + vec3(std::abs(s.radius)));
+            st.bounds.expand(transform_bounds(m, b));
+            break;
+          }
+          case ShapeKind::triangle:
+            if (n.shape < 0 || n.shape >= int(scene.triangles.size())) break;
+            for (const vec3& v : scene.triangles[n.shape].vertices) st.bounds.expand(transform_point(m, v));
+            break;
+          case ShapeKind::mesh: {
+            if (n.shape < 0 || n.shape >= int(scene.meshes.size())) break;
+            const Mesh& mesh = scene.meshes[n.shape];
+            st.mesh_triangles += mesh.triangle_count();
+            Bounds3& b = mesh_bounds[size_t(n.shape)];
+            if (!mesh_bounded[size_t(n.shape)]) {
+              for (const vec3& v : mesh.positions) b.expand(v);
+              mesh_bounded[size_t(n.shape)] = 1;
+            }
+            if (!b.empty()) st.bounds.expand(transform_bounds(m, b));
+            break;
+          }
+          case ShapeKind::plane: break;
         }
-        if (!b.empty()) st.bounds.expand(transform_bounds(m, b));
-        break;
-      }
-      case ShapeKind::plane: break;
-    }
-  });
+      },
+      max_instances);
   return st;
 }
 

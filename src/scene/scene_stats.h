@@ -2,6 +2,7 @@
 #pragma once
 
 #include "geometry/bounds.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 #include <string>
@@ -17,8 +18,9 @@ struct SceneStats {
   Bounds3 bounds;  // world bounds of the bounded shapes (planes excluded)
 };
 
-// Throws rayform::Error when the node graph is invalid (cycle, bad index).
-SceneStats scene_stats(const Scene& scene);
+// Throws rayform::Error when the node graph is invalid (cycle, bad index) or
+// makes more than `max_instances` shape instances.
+SceneStats scene_stats(const Scene& scene, uint64_t max_instances = Limits{}.instances);
 
 // Human-readable summary, one item a line.
 std::string format_scene_stats(const SceneStats& s);

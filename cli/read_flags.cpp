@@ -1,0 +1,30 @@
+#include "read_flags.h"
+
+#include "course_args.h"
+
+namespace rayform::cli {
+
+void add_read_flags(CLI::App& command, ReadFlags& flags) {
+  const Limits defaults;
+  command.add_option("--limit", flags.limits,
+                     "NAME=VALUE: raise or lower a limit on what a scene may claim (" + limit_names() +
+                         "; defaults: triangles and vertices " + std::to_string(defaults.triangles) + ", instances " +
+                         std::to_string(defaults.instances) + ", texture-texels " +
+                         std::to_string(defaults.texture_texels) + ", json-depth " +
+                         std::to_string(defaults.json_depth) + ")");
+  command.add_flag("--confine", flags.confine,
+                   "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
+                   "out or URIs other than data:)");
+}
+
+void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
+  for (const std::string& l : flags.limits) {
+    const size_t eq = l.find('=');
+    if (eq == std::string::npos) throw UsageError("--limit expects NAME=VALUE, got '" + l + "'");
+    if (std::string problem = set_limit(options.limits, l.substr(0, eq), l.substr(eq + 1)); !problem.empty())
+      throw UsageError("--" + problem);
+  }
+  options.access.confine = flags.confine;
+}
+
+}  // namespace rayform::cli

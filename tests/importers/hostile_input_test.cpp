@@ -1,0 +1,214 @@
+// Hostile files refused before they cost memory, time or secrets: the limits
+// (scene/limits.h) checked by the readers and load_scene, glTF node graphs
+// that are not trees, JSON nested too deep, files that never end (devices),
+// and --confine (referenced_files.h) for every kind of file a scene names.
+// All inputs are written here.
+#include "gltf/gltf_reader.h"
+#include "referenced_files.h"
+#include "scene/error.h"
+#include "scene_io.h"
+#include "test_paths.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace rayform {
+namespace {
+namespace fs = std::filesystem;
+
+// One triangle (0,0,0), (1,0,0), (0,1,0) as nine little-endian floats.
+constexpr const char* triangle_base64 = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+
+void put(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+// A glTF with `nodes_json` as its nodes, scene 0 listing `roots_json`, one
+// mesh of one triangle whose POSITION comes from `buffer_uri` (36 bytes).
+std::string gltf(const std::string& nodes_json, const std::string& roots_json = "[0]",
+                 const std::string& buffer_uri = std::string("data:application/octet-stream;base64,") + triangle_base64,
+                 const std::string& extra = "") {
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)" + roots_json + R"(}],"nodes":)" + nodes_json +
+         R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+"bufferViews":[{"buffer":0,"byteLength":36}],
+"buffers":[{"byteLength":36,"uri":")" +
+         buffer_uri + "\"}]" + extra + "}";
+}
+
+// The message of the Error `f` throws ("" when it does not throw).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(HostileGltf, NodeWithTwoParentsIsRefusedAtOnce) {
+  // 40 levels of two nodes, each naming both nodes below: 2^40 paths.
+  std::string nodes = "[";
+  for (int level = 0; level < 40; ++level)
+    for (int k = 0; k < 2; ++k) {
+      nodes += level ? "," : (k ? "," : "");
+      nodes += level + 1 < 40
+                   ? R"({"children":[)" + std::to_string(2 * level + 2) + "," + std::to_string(2 * level + 3) + "]}"
+                   : std::string(R"({"mesh":0})");
+    }
+  nodes += "]";
+  const fs::path dir = test::temp_dir("hostile_dag");
+  put(dir / "dag.gltf", gltf(nodes));
+  const std::string e = error_of([&] { read_gltf_scene((dir / "dag.gltf").string()); });
+  EXPECT_NE(e.find("dag.gltf: nodes[2]: has two parents, nodes[0] and nodes[1]"), std::string::npos) << e;
+}
+
+TEST(HostileGltf, SceneListingAChildOrANodeTwiceIsRefused) {
+  const fs::path dir = test::temp_dir("hostile_roots");
+  put(dir / "child.gltf", gltf(R"([{"children":[1]},{"mesh":0}])", "[0,1]"));
+  EXPECT_NE(error_of([&] {
+              read_gltf_scene((dir / "child.gltf").string());
+            }).find("scenes[0].nodes[1]: nodes[1] is a child of nodes[0]"),
+            std::string::npos);
+  put(dir / "twice.gltf", gltf(R"([{"mesh":0}])", "[0,0]"));
+  EXPECT_NE(error_of([&] { read_gltf_scene((dir / "twice.gltf").string()); }).find("nodes[0] is listed twice"),
+            std::string::npos);
+  put(dir / "tree.gltf", gltf(R"([{"children":[1,2]},{"mesh":0},{"mesh":0}])"));
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "tree.gltf").string()); }), "");
+}
+
+TEST(HostileGltf, JsonNestedDeeperThanTheLimitIsRefusedWithItsPlace) {
+  const fs::path dir = test::temp_dir("hostile_json");
+  const std::string deep = std::string(20000, '[') + std::string(20000, ']');
+  put(dir / "deep.gltf",
+      gltf(R"([{"mesh":0}])", "[0]", std::string("data:application/octet-stream;base64,") + triangle_base64,
+           ",\"extras\":" + deep));
+  const std::string e = error_of([&] { read_gltf_scene((dir / "deep.gltf").string()); });
+  EXPECT_NE(e.find("deep.gltf: line 4, column 645: "), std::string::npos) << e;  // the 512th [ is level 513
+  EXPECT_NE(e.find("nest more than 512 levels"), std::string::npos) << e;
+  // Brackets inside strings do not count; a raised limit admits the file.
+  put(dir / "strings.gltf", gltf(R"([{"mesh":0,"name":")" + std::string(1000, '[') + R"("}])"));
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "strings.gltf").string()); }), "");
+  const std::string thousand = std::string(1000, '[') + std::string(1000, ']');
+  put(dir / "thousand.gltf",
+      gltf(R"([{"mesh":0}])", "[0]", std::string("data:application/octet-stream;base64,") + triangle_base64,
+           ",\"extras\":" + thousand));
+  EXPECT_NE(error_of([&] { read_gltf_scene((dir / "thousand.gltf").string()); }), "");
+  GltfReadOptions raised;
+  raised.limits.json_depth = max_json_depth;
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "thousand.gltf").string(), raised); }), "");
+}
+
+TEST(HostileGltf, AccessorWithoutDataIsBoundedByTheVertexLimit) {
+  const fs::path dir = test::temp_dir("hostile_accessor");
+  auto file = [&](int count) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"componentType":5126,"count":)" +
+           std::to_string(count) + R"(,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}]})";
+  };
+  put(dir / "bomb.gltf", file(200000000));
+  const std::string e = error_of([&] { read_gltf_scene((dir / "bomb.gltf").string()); });
+  EXPECT_NE(e.find("count 200000000 without a bufferView: vertices: 200000000 is more than the limit of 134217728"),
+            std::string::npos)
+      << e;
+  GltfReadOptions small;
+  small.limits.vertices = 6;
+  put(dir / "seven.gltf", file(7));
+  put(dir / "six.gltf", file(6));
+  EXPECT_NE(error_of([&] { read_gltf_scene((dir / "seven.gltf").string(), small); }).find("limit of 6"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "six.gltf").string(), small); }), "");
+}
+
+TEST(HostileScenes, TotalsAboveTheLimitsAreRefusedByLoadScene) {
+  const fs::path dir = test::temp_dir("hostile_totals");
+  put(dir / "two.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  LoadOptions o;
+  o.limits.triangles = 1;
+  EXPECT_NE(error_of([&] {
+              load_scene((dir / "two.obj").string(), o);
+            }).find("two.obj: triangles: 2 is more than the limit of 1 (raise it with --limit triangles=N)"),
+            std::string::npos);
+  o.limits.triangles = 2;
+  o.limits.vertices = 3;
+  EXPECT_NE(error_of([&] { load_scene((dir / "two.obj").string(), o); }).find("vertices: 4 is more than"),
+            std::string::npos);
+  o.limits.vertices = 4;
+  EXPECT_EQ(error_of([&] { load_scene((dir / "two.obj").string(), o); }), "");
+}
+
+// A course scene whose one mesh (and, if given, texture) are the names given.
+std::string course_scene(const std::string& mesh, const std::string& texture = "") {
+  return "PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }\n"
+         "Lights { numLights 0 }\nBackground { color 0 0 0 }\n"
+         "Materials { numMaterials 1 Material { diffuseColor 1 1 1 " +
+         (texture.empty() ? std::string() : "texture " + texture) +
+         " } }\n"
+         "Group { numObjects 1 MaterialIndex 0 TriangleMesh { obj_file " +
+         mesh + " } }\n";
+}
+
+TEST(HostileScenes, DevicesAreNotReadEvenWithoutConfine) {
+  const fs::path dir = test::temp_dir("hostile_device");
+  put(dir / "zero.txt", course_scene("/dev/zero"));
+  EXPECT_NE(error_of([&] {
+              load_scene((dir / "zero.txt").string());
+            }).find("zero.txt:5:62: mesh file '/dev/zero' (/dev/zero) is not a regular file"),
+            std::string::npos)
+      << error_of([&] { load_scene((dir / "zero.txt").string()); });
+}
+
+TEST(Confine, RefusesEveryWayOutAndAdmitsTheFolder) {
+  const fs::path root = test::temp_dir("confine");
+  const fs::path in = root / "in", out = root / "outside";
+  put(out / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  put(out / "x.mtl", "newmtl m\nKd 1 0 0\nmap_Kd tex.png\n");
+  put(in / "sub" / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  fs::create_symlink(out / "tri.obj", in / "link.obj");
+  LoadOptions confined;
+  confined.access.confine = true;
+  auto problem = [&](const std::string& file, const std::string& text, const LoadOptions& o) {
+    put(in / file, text);
+    return error_of([&] { load_scene((in / file).string(), o); });
+  };
+  // Course: '..', absolute, a symlink leading out; a subfolder is fine.
+  EXPECT_NE(problem("up.txt", course_scene("../outside/tri.obj"), confined)
+                .find("mesh file '../outside/tri.obj' lies outside the scene's folder"),
+            std::string::npos);
+  EXPECT_NE(problem("abs.txt", course_scene((out / "tri.obj").string()), confined).find("is an absolute path"),
+            std::string::npos);
+  EXPECT_NE(problem("link.txt", course_scene("link.obj"), confined).find("'link.obj' lies outside"), std::string::npos);
+  EXPECT_EQ(problem("sub.txt", course_scene("sub/tri.obj"), confined), "");
+  // Without --confine the same files are read.
+  EXPECT_EQ(problem("up.txt", course_scene("../outside/tri.obj"), LoadOptions{}), "");
+  EXPECT_EQ(problem("link.txt", course_scene("link.obj"), LoadOptions{}), "");
+  // OBJ: an mtllib leading out.
+  EXPECT_NE(problem("m.obj", "mtllib ../outside/x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", confined)
+                .find("m.obj:1: mtllib '../outside/x.mtl' lies outside"),
+            std::string::npos);
+  // glTF: a buffer leading out, a URI with a scheme; data: URIs are fine.
+  EXPECT_NE(problem("b.gltf", gltf(R"([{"mesh":0}])", "[0]", "../outside/tri.obj"), confined)
+                .find("b.gltf: uri '../outside/tri.obj' lies outside"),
+            std::string::npos);
+  EXPECT_NE(problem("h.gltf", gltf(R"([{"mesh":0}])", "[0]", "http://example.com/a.bin"), confined)
+                .find("uri 'http://example.com/a.bin' is a URI; only data: URIs are read under --confine"),
+            std::string::npos);
+  EXPECT_EQ(problem("d.gltf", gltf(R"([{"mesh":0}])"), confined), "");
+}
+
+TEST(Confine, UriSchemes) {
+  EXPECT_TRUE(has_uri_scheme("http://x"));
+  EXPECT_TRUE(has_uri_scheme("file:///etc/passwd"));
+  EXPECT_TRUE(has_uri_scheme("data:application/octet-stream;base64,AA=="));
+  EXPECT_FALSE(has_uri_scheme("C:/textures/a.png"));  // a drive letter
+  EXPECT_FALSE(has_uri_scheme("textures/a:b.png"));
+  EXPECT_FALSE(has_uri_scheme("a.png"));
+}
+
+}  // namespace
+}  // namespace rayform
