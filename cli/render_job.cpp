@@ -3,6 +3,7 @@
 #include "progress.h"
 #include "render/aov_images.h"
 #include "render/prepared_scene.h"
+#include "render/render_memory.h"
 #include "image/color.h"
 #include "image/output_files.h"
 #include "render/render.h"
@@ -73,6 +74,15 @@ void run_render_job(const RenderJob& job) {
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw Error(problem);
+  {  // the outputs' memory, before the scene is read (render() checks it again)
+    RenderOptions outputs = job.render;
+    outputs.depth = job.depth.has_value();
+    outputs.normals = !job.normals.empty();
+    outputs.albedo = !job.albedo.empty();
+    if (is_8bit_image_path(job.output)) outputs.color_format = ColorFormat::unit8;
+    if (std::string problem = render_memory_problem(outputs, available_memory_bytes()); !problem.empty())
+      throw Error(job.output + ": " + problem);
+  }
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   // --threads bounds the whole job (the BVH build too), not only the render.

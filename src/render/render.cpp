@@ -4,6 +4,7 @@
 #include "image/quantize.h"
 #include "render/camera_rays.h"
 #include "render/cube_map.h"
+#include "render/render_memory.h"
 #include "render/shade_phong.h"
 #include "scene/error.h"
 
@@ -322,6 +323,8 @@ std::string render_options_problem(const RenderOptions& o) {
 RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   const Scene& s = *p.scene;
   if (std::string problem = render_options_problem(o); !problem.empty()) throw Error("render: " + problem);
+  if (std::string problem = render_memory_problem(o, available_memory_bytes()); !problem.empty())
+    throw Error("render: " + problem);
   if (o.camera >= int(s.cameras.size()))
     throw Error("render: the scene has no camera " + std::to_string(o.camera) + " (it has " +
                 std::to_string(s.cameras.size()) + ")");

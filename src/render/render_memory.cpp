@@ -1,0 +1,49 @@
+#include "render/render_memory.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace rayform {
+
+uint64_t render_memory_bytes(const RenderOptions& o) {
+  const bool eight_bit = o.color_format != ColorFormat::linear_float;
+  const uint64_t color = eight_bit ? 3 + 3 : 12 + 12;
+  uint64_t per_pixel = color;
+  if (o.depth) per_pixel += 4 + 12 + 3;
+  if (o.normals) per_pixel += 12 + 12 + 3;
+  if (o.albedo) per_pixel += color;
+  const uint64_t pixels = uint64_t(std::max(o.width, 0)) * uint64_t(std::max(o.height, 0));
+  constexpr uint64_t most = std::numeric_limits<uint64_t>::max();
+  return pixels > most / per_pixel ? most : pixels * per_pixel;
+}
+
+uint64_t available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return 0;
+}
+
+namespace {
+std::string gigabytes(uint64_t bytes) {
+  char text[32];
+  const double gb = double(bytes) / 1e9;
+  std::snprintf(text, sizeof text, gb < 10 ? "%.1f GB" : "%.0f GB", gb);
+  return text;
+}
+}  // namespace
+
+std::string render_memory_problem(const RenderOptions& o, uint64_t available) {
+  const uint64_t need = render_memory_bytes(o);
+  if (available == 0 || need <= available) return "";
+  return "size: a " + std::to_string(o.width) + "x" + std::to_string(o.height) + " image needs " + gigabytes(need) +
+         " for its buffers and files, more than the " + gigabytes(available) + " of memory available";
+}
+
+}  // namespace rayform
