@@ -1,6 +1,7 @@
 #include "gltf/gltf_writer.h"
 
 #include "gltf/gltf_material.h"
+#include "image/checked_write.h"
 #include "image/output_files.h"
 #include "shape_tessellation.h"
 #include "text_format.h"
@@ -11,6 +12,7 @@
 #include "scene/node_walk.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -20,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -882,6 +885,29 @@ class GltfBuilder {
 
   // ---- output ---------------------------------------------------------------------------
 
+  // The length a .glb's header declares (0 when the header is missing).
+  static uint64_t glb_length(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char head[12] = {};
+    if (!in.read(reinterpret_cast<char*>(head), sizeof head)) return 0;
+    return uint64_t(head[8]) | uint64_t(head[9]) << 8 | uint64_t(head[10]) << 16 | uint64_t(head[11]) << 24;
+  }
+
+  // A file tinygltf wrote: `bytes` long (when not 0), complete JSON (when
+  // `json`), then synced; else the write failed (a full disk, most likely).
+  void check_written(const std::string& file, uint64_t bytes, bool json) const {
+    std::error_code ec;
+    const uint64_t size = fs::file_size(file, ec);
+    bool complete = !ec && size > 0 && (bytes == 0 || size == bytes);
+    if (complete && json) {
+      std::ifstream in(file, std::ios::binary);
+      complete = nlohmann::json::accept(in);
+    }
+    std::string error = complete ? "" : "the file was cut short (disk full?)";
+    if (complete && !sync_file(file, &error)) complete = false;
+    if (!complete) throw Error(path_ + ": cannot write (" + error + ")");
+  }
+
   SaveResult save() {
     if (!buffer_.empty()) {
       tinygltf::Buffer b;
@@ -899,9 +925,13 @@ class GltfBuilder {
       throw Error(path_ + ": cannot write (tinygltf failed to write '" + temp_main + "')");
     std::error_code ec;
     if (!fs::is_regular_file(temp_main, ec)) throw Error(path_ + ": cannot write (tinygltf wrote nothing)");
+    // tinygltf does not check its writes: a full disk leaves short files. Each
+    // is checked for its whole length, then synced (image/checked_write.h).
+    check_written(temp_main, options_.binary ? glb_length(temp_main) : 0, !options_.binary);
     if (!model_.buffers.empty() && !model_.buffers[0].uri.empty()) {
       std::string bin = (fs::path(dir) / model_.buffers[0].uri).string();
       if (!fs::is_regular_file(bin, ec)) throw Error(path_ + ": cannot write the buffer file " + model_.buffers[0].uri);
+      check_written(bin, model_.buffers[0].data.size(), false);
       out_.add_written(out_.beside(model_.buffers[0].uri), bin);
     }
     out_.add_written(path_, temp_main);

@@ -1,8 +1,8 @@
 #include "image/bmp_writer.h"
 
+#include "image/checked_write.h"
+
 #include <cstdint>
-#include <cstdio>
-#include <memory>
 
 namespace rayform {
 namespace {
@@ -48,11 +48,7 @@ std::vector<unsigned char> encode_bmp24(const Image8& img) {
 
 bool write_bmp24(const std::string& path, const Image8& img, std::string* error) {
   const std::vector<unsigned char> file = encode_bmp24(img);
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
-  bool ok = f && std::fwrite(file.data(), 1, file.size(), f.get()) == file.size();
-  ok = f && std::fclose(f.release()) == 0 && ok;
-  if (!ok) *error = "cannot write the file (folder missing, not writable or disk full?)";
-  return ok;
+  return write_file_checked(path, file.data(), file.size(), error);
 }
 
 }  // namespace rayform

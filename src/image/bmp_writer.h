@@ -16,7 +16,8 @@ namespace rayform {
 std::vector<unsigned char> encode_bmp24(const Image8& image);
 
 // Writes encode_bmp24(image) to `path` as is (the caller picks the temporary
-// name). Returns false and sets *error when the file cannot be written.
+// name) through write_file_checked. Returns false and sets *error when the
+// file cannot be written.
 bool write_bmp24(const std::string& path, const Image8& image, std::string* error);
 
 }  // namespace rayform

@@ -1,5 +1,6 @@
 #include "image/image.h"
 
+#include "image/interrupt_cleanup.h"
 #include "image/oiio_plugin.h"
 #include "image/replace_file.h"
 #include "image/stb_codec.h"
@@ -54,6 +55,7 @@ template <class WriteFn>
 std::string write_temporary(const std::string& path, int width, int height, int channels, WriteFn&& write) {
   if (width <= 0 || height <= 0 || channels <= 0) throw Error(path + ": cannot write an empty image");
   const std::string tmp = temporary_path(path);
+  track_temporary(tmp);  // removed if the run is interrupted before commit or discard
   std::string error;
   if (!write(tmp, &error)) {
     discard_temporary(tmp);
@@ -91,11 +93,13 @@ void commit_temporary(const std::string& temporary, const std::string& path) {
     discard_temporary(temporary);
     throw Error(path + ": cannot write image: " + ec.message());
   }
+  untrack_temporary(temporary);
 }
 
 void discard_temporary(const std::string& temporary) {
   std::error_code ec;
   fs::remove(temporary, ec);
+  untrack_temporary(temporary);
 }
 
 void write_image(const std::string& path, const Image& image) {

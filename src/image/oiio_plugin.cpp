@@ -1,5 +1,7 @@
 #include "image/oiio_plugin.h"
 
+#include "image/checked_write.h"
+
 #include "image/oiio_plugin_abi.h"
 #include "scene/error.h"
 
@@ -91,7 +93,7 @@ bool oiio_write(const std::string& file_for_format, const std::string& path, con
     *error = buf;
     return false;
   }
-  return true;
+  return sync_file(path, error);  // OpenImageIO's own writes are not all checked
 }
 
 }  // namespace rayform

@@ -1,5 +1,7 @@
 #include "image/output_files.h"
 
+#include "image/checked_write.h"
+#include "image/interrupt_cleanup.h"
 #include "image/replace_file.h"
 #include "scene/error.h"
 
@@ -18,8 +20,14 @@ OutputFiles::OutputFiles(std::string main) : main_(std::move(main)) {}
 
 OutputFiles::~OutputFiles() {
   std::error_code ec;
-  for (const std::string& t : temps_) fs::remove(t, ec);
-  for (const std::string& d : temp_dirs_) fs::remove_all(d, ec);
+  for (const std::string& t : temps_) {
+    fs::remove(t, ec);
+    untrack_temporary(t);
+  }
+  for (const std::string& d : temp_dirs_) {
+    fs::remove_all(d, ec);
+    untrack_temporary(d);
+  }
 }
 
 std::string OutputFiles::beside(const std::string& file_name) const {
@@ -42,6 +50,7 @@ void OutputFiles::add(const std::string& path, const std::string& text) {
 
 void OutputFiles::add_written(const std::string& path, const std::string& temp_path) {
   temps_.push_back(temp_path);
+  track_temporary(temp_path);
   for (Entry& e : entries_)
     if (e.path == path) {
       e.bytes.clear();
@@ -74,6 +83,7 @@ std::string OutputFiles::temp_dir() {
   fs::create_directories(d, ec);
   if (ec) throw Error(main_ + ": cannot create a temporary folder '" + d + "': " + ec.message());
   temp_dirs_.push_back(d);
+  track_temporary(d, /*folder*/ true);
   return d;
 }
 
@@ -88,13 +98,9 @@ std::vector<std::string> OutputFiles::commit() {
     }
     std::string tmp = temp_name_for(e.path);
     temps_.push_back(tmp);
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw Error(e.path + ": cannot write (cannot create '" + tmp + "')");
-      out.write(reinterpret_cast<const char*>(e.bytes.data()), std::streamsize(e.bytes.size()));
-      out.flush();
-      if (!out) throw Error(e.path + ": cannot write (disk full or I/O error)");
-    }
+    track_temporary(tmp);
+    if (std::string error; !write_file_checked(tmp, e.bytes.data(), e.bytes.size(), &error))
+      throw Error(e.path + ": cannot write (" + error + ")");
     moves.emplace_back(tmp, e.path);
   }
   std::vector<std::string> done;
@@ -103,6 +109,7 @@ std::vector<std::string> OutputFiles::commit() {
     replace_file(from, to, ec);
     if (ec) throw Error(to + ": cannot write (rename from '" + from + "' failed: " + ec.message() + ")");
     temps_.erase(std::remove(temps_.begin(), temps_.end(), from), temps_.end());
+    untrack_temporary(from);
     done.push_back(to);
   }
   std::rotate(done.begin(), done.end() - (done.empty() ? 0 : 1), done.end());  // main first

@@ -1,6 +1,7 @@
 #include "image/stb_codec.h"
 
 #include "image/bmp_writer.h"
+#include "image/checked_write.h"
 #include "image/quantize.h"
 
 #include <stb_image.h>
@@ -73,24 +74,40 @@ bool stb_writes_8bit(const std::string& ext) {
   return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg";
 }
 
+namespace {
+// stb encodes into memory (its file writers do not check fwrite); the bytes
+// then go through write_file_checked.
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+}
+bool write_encoded(const std::string& path, int encoded, const std::vector<unsigned char>& bytes, std::string* error) {
+  if (!encoded) {
+    *error = "cannot encode the image";
+    return false;
+  }
+  return write_file_checked(path, bytes.data(), bytes.size(), error);
+}
+}  // namespace
+
 bool stb_write8(const std::string& path, const std::string& ext, const Image8& img, std::string* error) {
   const int w = img.width, h = img.height, c = img.channels;
   const unsigned char* q = img.pixels.data();
   if (ext == ".bmp" && (c == 1 || c == 3)) return write_bmp24(path, img, error);  // stb's bytes, faster
+  std::vector<unsigned char> bytes;
   int ok = 0;
-  if (ext == ".png") ok = stbi_write_png(path.c_str(), w, h, c, q, w * c);
-  else if (ext == ".bmp") ok = stbi_write_bmp(path.c_str(), w, h, c, q);
-  else if (ext == ".tga") ok = stbi_write_tga(path.c_str(), w, h, c, q);
-  else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), w, h, c, q, 95);
-  if (!ok) *error = "cannot write the file (folder missing or not writable?)";
-  return ok != 0;
+  if (ext == ".png") ok = stbi_write_png_to_func(append_bytes, &bytes, w, h, c, q, w * c);
+  else if (ext == ".bmp") ok = stbi_write_bmp_to_func(append_bytes, &bytes, w, h, c, q);
+  else if (ext == ".tga") ok = stbi_write_tga_to_func(append_bytes, &bytes, w, h, c, q);
+  else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg_to_func(append_bytes, &bytes, w, h, c, q, 95);
+  return write_encoded(path, ok, bytes, error);
 }
 
 bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
   if (ext == ".hdr") {
-    if (stbi_write_hdr(path.c_str(), img.width, img.height, img.channels, img.pixels.data())) return true;
-    *error = "cannot write the file (folder missing or not writable?)";
-    return false;
+    std::vector<unsigned char> bytes;
+    const int ok = stbi_write_hdr_to_func(append_bytes, &bytes, img.width, img.height, img.channels, img.pixels.data());
+    return write_encoded(path, ok, bytes, error);
   }
   Image8 q{img.width, img.height, img.channels, std::vector<unsigned char>(img.pixels.size())};
   for (size_t i = 0; i < q.pixels.size(); ++i) q.pixels[i] = quantize_unit(img.pixels[i]);

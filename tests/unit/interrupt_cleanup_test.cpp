@@ -1,0 +1,60 @@
+// interrupt_cleanup.h: a process stopped by SIGINT/SIGTERM/SIGHUP removes the
+// temporary files and folders it tracks, keeps what it untracked, and still
+// ends by that signal. Each case runs in a forked child.
+#include "image/interrupt_cleanup.h"
+#include "test_paths.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace rayform {
+namespace {
+namespace fs = std::filesystem;
+
+// Runs `body` in a child process; returns its wait status.
+template <class F>
+int in_child(F&& body) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    body();
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+TEST(InterruptCleanup, TrackedTemporariesAreRemovedOnEachSignal) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const fs::path dir = test::temp_dir("interrupt_" + std::to_string(sig));
+    const fs::path tmp = dir / ".out.tmp.png", kept = dir / "kept.png", folder = dir / ".out.tmp.d",
+                   inside = folder / "scene.gltf";
+    const int status = in_child([&] {
+      std::ofstream(tmp) << "partial";
+      std::ofstream(kept) << "finished";
+      fs::create_directories(folder);
+      std::ofstream(inside) << "{";
+      track_temporary(tmp.string());
+      track_temporary(kept.string());
+      untrack_temporary(kept.string());  // renamed into place: no longer a temporary
+      track_temporary(folder.string(), /*folder*/ true);
+      track_temporary(inside.string());
+      std::raise(sig);
+      _exit(3);  // not reached: the signal ends the process
+    });
+    EXPECT_TRUE(WIFSIGNALED(status)) << sig;
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_FALSE(fs::exists(tmp)) << sig;
+    EXPECT_FALSE(fs::exists(inside)) << sig;
+    EXPECT_FALSE(fs::exists(folder)) << sig;
+    EXPECT_TRUE(fs::exists(kept)) << sig;
+  }
+}
+
+}  // namespace
+}  // namespace rayform
