@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 
 namespace rayform::cli {
 namespace fs = std::filesystem;
@@ -60,6 +61,18 @@ void run_convert(const ConvertArgs& a) {
     messages.push_back(fs::path(a.output).filename().string() + ": --tessellate-only applies to glTF output only");
 
   SaveResult r = save_scene(loaded.scene, a.output, o, &messages);
+  // What came into the output from outside the input's folder (a scene from
+  // elsewhere may name any file the user can read; --confine refuses them).
+  const fs::path folder = fs::absolute(a.input, ec).parent_path();
+  std::set<std::string> external;
+  for (const Mesh& m : loaded.scene.meshes)
+    if (!m.source_path.empty() && m.source_path != loaded.scene.source_path &&
+        !lies_within_folder(m.source_path, folder))
+      external.insert(m.source_path);
+  for (const Texture& t : loaded.scene.textures)
+    if (!t.path.empty() && !lies_within_folder(t.path, folder)) external.insert(t.path);
+  for (const std::string& f : external)
+    messages.push_back("copied " + f + ", from outside the input's folder, into the output");
   for (const std::string& m : messages) std::cerr << "note: " << m << "\n";
   if (a.stats) {
     std::cout << "read: " << a.input << ": " << counts(loaded.scene) << "\n";

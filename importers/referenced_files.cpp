@@ -25,6 +25,14 @@ bool lies_within(const fs::path& path, const fs::path& folder) {
 }
 }  // namespace
 
+bool lies_within_folder(const fs::path& path, const fs::path& folder) {
+  std::error_code ec;
+  const fs::path f = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+  if (ec) return false;
+  const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  return !ec && lies_within(p, f);
+}
+
 std::string referenced_file_problem(const std::string& scene_file, const std::string& what, const std::string& name,
                                     const fs::path& resolved, const FileAccess& access) {
   const std::string named = what + " '" + name + "'";
@@ -34,10 +42,9 @@ std::string referenced_file_problem(const std::string& scene_file, const std::st
       return named + " is a URI; only data: URIs are read under --confine";
     if (fs::path(name).is_absolute() || (!name.empty() && (name[0] == '/' || name[0] == '\\')))
       return named + " is an absolute path, refused by --confine";
-    const fs::path folder = fs::weakly_canonical(fs::absolute(scene_file, ec).parent_path(), ec);
-    const fs::path target = fs::weakly_canonical(fs::absolute(resolved, ec), ec);
-    if (ec || !lies_within(target, folder))
-      return named + " lies outside the scene's folder " + folder.string() + " (refused by --confine)";
+    if (!lies_within_folder(resolved, fs::absolute(scene_file, ec).parent_path()))
+      return named + " lies outside the scene's folder " +
+             fs::weakly_canonical(fs::absolute(scene_file, ec).parent_path(), ec).string() + " (refused by --confine)";
   }
   const fs::file_status status = fs::status(resolved, ec);
   if (!ec && fs::exists(status) && !fs::is_regular_file(status))

@@ -24,6 +24,10 @@ struct FileAccess {
 std::string referenced_file_problem(const std::string& scene_file, const std::string& what, const std::string& name,
                                     const std::filesystem::path& resolved, const FileAccess& access);
 
+// Whether `path` lies in `folder` or below, both made absolute and canonical
+// (symlinks followed).
+bool lies_within_folder(const std::filesystem::path& path, const std::filesystem::path& folder);
+
 // Whether a name written in a file is a URI with a scheme ("http:", "file:",
 // "data:"; not a Windows drive letter such as "C:").
 bool has_uri_scheme(const std::string& name);

@@ -55,6 +55,12 @@ SaveResult save_scene(const Scene& scene, const std::string& path, const SaveOpt
   return write_gltf_scene(*s, path, o, messages);
 }
 
+void protect_scene_inputs(const Scene& scene, OutputFiles& out) {
+  out.protect(scene.source_path);
+  for (const Mesh& m : scene.meshes) out.protect(m.source_path);
+  for (const Texture& t : scene.textures) out.protect(t.path);
+}
+
 void require_scene_root(const Scene& scene, const std::string& path) {
   if (scene.root == invalid || size_t(scene.root) >= scene.nodes.size())
     throw Error(path + ": the scene has no root node: nothing to write");

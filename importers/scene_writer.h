@@ -11,6 +11,7 @@
 #pragma once
 
 #include "course_txt/course_dialect.h"
+#include "image/output_files.h"
 #include "scene/scene.h"
 
 #include <cstddef>
@@ -55,5 +56,11 @@ SaveResult save_scene(const Scene& scene, const std::string& path, const SaveOpt
 // What every writer checks first: throws rayform::Error naming `path` when
 // `scene` has no root node (nothing to write).
 void require_scene_root(const Scene& scene, const std::string& path);
+
+// What every writer protects (OutputFiles::protect): the files the scene was
+// read from (the scene file, its meshes and textures), which an output must
+// never replace (`convert s.txt o.txt` would otherwise overwrite the input
+// mesh o_teapot.obj with the converted one).
+void protect_scene_inputs(const Scene& scene, OutputFiles& out);
 
 }  // namespace rayform

@@ -2,6 +2,7 @@
 
 #include "course_txt/course_mesh.h"
 #include "image/output_files.h"
+#include "scene_writer.h"
 
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
@@ -68,6 +69,7 @@ class CourseBuilder {
   CourseBuilder(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                 std::vector<std::string>* messages)
       : s_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+    protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
   }

@@ -3,6 +3,7 @@
 #include "gltf/gltf_material.h"
 #include "image/checked_write.h"
 #include "image/output_files.h"
+#include "scene_writer.h"
 #include "shape_tessellation.h"
 #include "text_format.h"
 #include "texture_files.h"
@@ -183,6 +184,7 @@ class GltfBuilder {
   GltfBuilder(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
               std::vector<std::string>* messages)
       : scene_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+    protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
     extent_ = scene_extent(scene);

@@ -1,6 +1,7 @@
 #include "obj/obj_writer.h"
 
 #include "image/output_files.h"
+#include "scene_writer.h"
 #include "scene/error.h"
 #include "scene_flatten.h"
 #include "shape_tessellation.h"
@@ -32,6 +33,7 @@ class ObjBuilder {
   ObjBuilder(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
              std::vector<std::string>* messages)
       : scene_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+    protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
     extent_ = scene_extent(scene);

@@ -87,7 +87,18 @@ std::string OutputFiles::temp_dir() {
   return d;
 }
 
+void OutputFiles::protect(const std::string& path) {
+  if (!path.empty()) protected_.push_back(path);
+}
+
 std::vector<std::string> OutputFiles::commit() {
+  for (const Entry& e : entries_)
+    for (const std::string& p : protected_) {
+      std::error_code ec;
+      if (fs::exists(e.path, ec) && fs::equivalent(e.path, p, ec))
+        throw Error(e.path + ": writing it would replace " + p +
+                    ", which the scene was read from; choose another output name or folder");
+    }
   // Main file last: readers never see it before what it names.
   std::stable_partition(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.path != main_; });
   std::vector<std::pair<std::string, std::string>> moves;  // temp -> final

@@ -30,6 +30,9 @@ class OutputFiles {
   // set is not committed.
   void add_written(const std::string& path, const std::string& temp_path);
   bool has(const std::string& path) const;
+  // A file that must never be replaced (an input of the conversion): commit
+  // refuses, before renaming anything, when an output is that file.
+  void protect(const std::string& path);
   // A fresh temporary folder beside the main file, removed by the destructor.
   std::string temp_dir();
   // Writes and renames everything; returns the final paths, main first.
@@ -43,7 +46,7 @@ class OutputFiles {
   };
   std::string main_;
   std::vector<Entry> entries_;
-  std::vector<std::string> temps_, temp_dirs_;
+  std::vector<std::string> temps_, temp_dirs_, protected_;
 };
 
 }  // namespace rayform

@@ -7,12 +7,14 @@
 #include "referenced_files.h"
 #include "scene/error.h"
 #include "scene_io.h"
+#include "scene_writer.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace rayform {
 namespace {
@@ -199,6 +201,27 @@ TEST(Confine, RefusesEveryWayOutAndAdmitsTheFolder) {
                 .find("uri 'http://example.com/a.bin' is a URI; only data: URIs are read under --confine"),
             std::string::npos);
   EXPECT_EQ(problem("d.gltf", gltf(R"([{"mesh":0}])"), confined), "");
+}
+
+TEST(HostileScenes, ConvertNeverReplacesAnInput) {
+  // The writer names the mesh read from teapot.obj "o_teapot.obj" for the
+  // output o.txt: the scene's other mesh file.
+  const fs::path dir = test::temp_dir("hostile_convert");
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  put(dir / "teapot.obj", tri);
+  put(dir / "o_teapot.obj", tri + "# the input\n");
+  put(dir / "s.txt",
+      "PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }\n"
+      "Materials { numMaterials 1 Material { diffuseColor 1 1 1 } }\n"
+      "Group { numObjects 2 MaterialIndex 0 Transform { Translate 1 0 0 TriangleMesh { obj_file teapot.obj } }\n"
+      "  TriangleMesh { obj_file o_teapot.obj } }\n");
+  const LoadedScene loaded = load_scene((dir / "s.txt").string());
+  const std::string e = error_of([&] { save_scene(loaded.scene, (dir / "o.txt").string()); });
+  EXPECT_NE(e.find("o_teapot.obj: writing it would replace"), std::string::npos) << e;
+  std::ifstream in(dir / "o_teapot.obj");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), tri + "# the input\n");
+  EXPECT_FALSE(fs::exists(dir / "o.txt"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);  // nothing else written
 }
 
 TEST(Confine, UriSchemes) {
