@@ -386,7 +386,8 @@ class MeshBuilder {
   }
 
   // Opens r into up to bvh_width ranges, splitting the one of largest area each
-  // time, then builds below each.
+  // time, then builds below each. r has more than min_leaf_ items, so it is
+  // split at least once: a node never has r as its only child.
   BuildNode* build_node(const Range& r, const Split& s, int depth) {
     Range child_ranges[bvh_width];
     std::optional<Split> child_splits[bvh_width];
@@ -399,6 +400,12 @@ class MeshBuilder {
       for (int i = 0; i < k; ++i) {
         if (child_ranges[i].count() <= uint32_t(min_leaf_)) continue;
         float a = child_ranges[i].geom.half_area();
+        // An infinite extent times a zero one (a flat box spanning more than
+        // the float range, such as a triangle at +-3e38 in a plane) is NaN,
+        // which no comparison would pick: r would become its own only child,
+        // again and again until the stack overflowed. Such a box is as large
+        // as any.
+        if (std::isnan(a)) a = infinity;
         if (a > best_area) {
           best_area = a;
           best = i;
