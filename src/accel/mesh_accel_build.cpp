@@ -516,8 +516,9 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   const size_t n = indices.size() / 3;
   if (n >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
 
-  // Triangle boxes, and the root range's boxes; triangles with empty or
-  // non-finite bounds are left out.
+  // Triangle boxes, and the root range's boxes; triangles with a non-finite
+  // vertex are left out (a NaN vertex would not even reach the box: min and
+  // max pass over it).
   struct Boxes {
     size_t valid = 0;  // triangles with a box
     Range root;        // over those, in index order
@@ -528,8 +529,12 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
       [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
           Bounds3 b;
-          for (int k = 0; k < 3; ++k) b.expand(positions[indices[3 * i + k]]);
-          bool ok = !b.empty() && is_finite(b.lo) && is_finite(b.hi);
+          bool ok = true;
+          for (int k = 0; k < 3; ++k) {
+            const vec3& v = positions[indices[3 * i + k]];
+            b.expand(v);
+            ok = ok && is_finite(v);
+          }
           PrimRef& p = refs[i];
           for (int a = 0; a < 3; ++a) {
             p.lo[a] = b.lo[a];

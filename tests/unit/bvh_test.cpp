@@ -10,6 +10,7 @@
 #include <tbb/global_control.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 
 namespace rayform {
@@ -291,6 +292,18 @@ TEST(Bvh, FlatTrianglesBeyondTheFloatRangeBuild) {
   // The small triangles at z = 1 are hit; the huge ones overflow the
   // triangle test itself (brute force misses them too).
   EXPECT_EQ(hits, 2);
+}
+
+TEST(Bvh, TrianglesWithANonFiniteVertexAreLeftOut) {
+  // A NaN vertex does not reach the triangle's box (min and max pass over it),
+  // so only the vertices themselves tell.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  SoupMesh m;
+  m.positions = {vec3(0.f, 0.f, 0.f), vec3(1.f, 0.f, 0.f), vec3(0.f, 1.f, 0.f), vec3(nan, 0.f, 0.f),
+                 vec3(0.f, infinity, 0.f)};
+  m.indices = {0, 1, 2, 3, 1, 2, 0, 3, 2, 0, 1, 4, 2, 1, 0};
+  MeshAccel accel = build_mesh_accel(m.positions, m.indices);
+  EXPECT_EQ(accel.triangles, (std::vector<uint32_t>{0, 4}));
 }
 
 // Walks the flattened tree and checks its invariants; returns the depth.
