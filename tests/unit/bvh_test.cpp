@@ -9,6 +9,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -269,6 +270,55 @@ void expect_valid_mesh_tree(const MeshAccel& m, std::span<const vec3> pos, std::
   size_t wrong = 0;
   for (size_t t = 0; t < n; ++t) wrong += seen[t] != 1;
   EXPECT_EQ(wrong, 0u) << "triangles in no leaf or in several";
+}
+
+// Rays straight down through the stack at (x, y), and slanted ones through
+// its middle, compared with brute force (closest and any hit).
+void expect_stack_queries(const SoupMesh& m, const MeshAccel& accel) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-0.2f, 0.2f);
+  int hits = 0;
+  for (int i = 0; i < 12; ++i) {
+    Ray r;
+    r.origin = vec3(0.1f + u(rng), 0.1f + u(rng), 2.f);
+    r.direction = i % 2 ? vec3(0.f, 0.f, -1.f) : glm::normalize(vec3(u(rng), u(rng), -1.f));
+    expect_same_closest(m.positions, m.indices, accel, r, &hits);
+    if (::testing::Test::HasFatalFailure()) FAIL() << "ray " << i;
+    EXPECT_EQ(occluded_mesh(accel, r), brute_closest(m.positions, m.indices, r).hit) << "ray " << i;
+  }
+  EXPECT_GE(hits, 10);
+}
+
+TEST(Bvh, StacksOfCoincidentTrianglesBuildValidTrees) {
+  // Hostile input (issue 12): no plane separates the centroids, so the
+  // builder splits by count all the way down. 200k copies of one triangle
+  // (shared vertices), then 200k different triangles whose boxes all have
+  // the same centre (the origin) but other sizes and shapes.
+  constexpr uint32_t n = 200000;
+  SoupMesh same;
+  same.positions = {vec3(-1.f, -1.f, 0.f), vec3(1.f, -1.f, 0.f), vec3(0.f, 1.f, 0.f)};
+  for (uint32_t i = 0; i < n; ++i) same.indices.insert(same.indices.end(), {0u, 1u, 2u});
+  MeshAccel a = build_mesh_accel(same.positions, same.indices);
+  expect_valid_mesh_tree(a, same.positions, same.indices);
+  expect_stack_queries(same, a);
+
+  SoupMesh centred;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> size(0.5f, 2.f), w(-1.f, 1.f);
+  for (uint32_t i = 0; i < n; ++i) {
+    // Box [-sx, sx] x [-sy, sy] x [-sz, sz], centre exactly 0: the vertices'
+    // extremes are negatives of each other.
+    const float sx = size(rng), sy = size(rng), sz = 0.2f * size(rng);
+    vec3 v[3] = {vec3(-sx, -sy, -sz), vec3(sx, -sy, sz), vec3(w(rng) * sx, sy, 0.f)};
+    std::shuffle(v, v + 3, rng);
+    for (const vec3& p : v) {
+      centred.indices.push_back(uint32_t(centred.positions.size()));
+      centred.positions.push_back(p);
+    }
+  }
+  MeshAccel b = build_mesh_accel(centred.positions, centred.indices);
+  expect_valid_mesh_tree(b, centred.positions, centred.indices);
+  expect_stack_queries(centred, b);
 }
 
 TEST(Bvh, FlatTrianglesBeyondTheFloatRangeBuild) {
