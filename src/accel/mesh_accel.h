@@ -72,7 +72,7 @@ struct MeshAccel {
 
 // Builds with a parallel (oneTBB) binned SAH builder; deterministic: the same
 // input gives the same structure whatever the number of threads. Triangles
-// with empty or non-finite bounds are left out. options.max_leaf_size bounds
+// with a non-finite (NaN or infinite) vertex are left out. options.max_leaf_size bounds
 // the triangles of a leaf (clamped to 1..60; leaves are made of packets of
 // four), options.bins the SAH bins per axis (clamped to 2..64; fewer for
 // small ranges), options.traversal_cost the cost of a node relative to a

@@ -386,7 +386,8 @@ class MeshBuilder {
   }
 
   // Opens r into up to bvh_width ranges, splitting the one of largest area each
-  // time, then builds below each.
+  // time, then builds below each. r has more than min_leaf_ items, so it is
+  // split at least once: a node never has r as its only child.
   BuildNode* build_node(const Range& r, const Split& s, int depth) {
     Range child_ranges[bvh_width];
     std::optional<Split> child_splits[bvh_width];
@@ -399,6 +400,12 @@ class MeshBuilder {
       for (int i = 0; i < k; ++i) {
         if (child_ranges[i].count() <= uint32_t(min_leaf_)) continue;
         float a = child_ranges[i].geom.half_area();
+        // An infinite extent times a zero one (a flat box spanning more than
+        // the float range, such as a triangle at +-3e38 in a plane) is NaN,
+        // which no comparison would pick: r would become its own only child,
+        // again and again until the stack overflowed. Such a box is as large
+        // as any.
+        if (std::isnan(a)) a = infinity;
         if (a > best_area) {
           best_area = a;
           best = i;
@@ -509,8 +516,9 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   const size_t n = indices.size() / 3;
   if (n >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
 
-  // Triangle boxes, and the root range's boxes; triangles with empty or
-  // non-finite bounds are left out.
+  // Triangle boxes, and the root range's boxes; triangles with a non-finite
+  // vertex are left out (a NaN vertex would not even reach the box: min and
+  // max pass over it).
   struct Boxes {
     size_t valid = 0;  // triangles with a box
     Range root;        // over those, in index order
@@ -521,8 +529,12 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
       [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
           Bounds3 b;
-          for (int k = 0; k < 3; ++k) b.expand(positions[indices[3 * i + k]]);
-          bool ok = !b.empty() && is_finite(b.lo) && is_finite(b.hi);
+          bool ok = true;
+          for (int k = 0; k < 3; ++k) {
+            const vec3& v = positions[indices[3 * i + k]];
+            b.expand(v);
+            ok = ok && is_finite(v);
+          }
           PrimRef& p = refs[i];
           for (int a = 0; a < 3; ++a) {
             p.lo[a] = b.lo[a];

@@ -9,7 +9,9 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 
 namespace rayform {
@@ -209,6 +211,149 @@ TEST(Bvh, CoincidentTrianglesStillFindTheHit) {
   EXPECT_EQ(tmax, 1.f);
   EXPECT_LT(h.triangle, 500u);
   EXPECT_TRUE(occluded_mesh(accel, r));
+}
+
+// Walks a mesh tree from node `index` and checks its invariants: children
+// after their parent, every child box enclosing what lies below it, leaves of
+// at most max_leaf_packets packets. Counts in seen[t] the leaves holding
+// triangle t; returns the levels of nodes.
+int check_wide_subtree(const MeshAccel& m, std::span<const vec3> pos, std::span<const uint32_t> idx, uint32_t index,
+                       std::vector<int>& seen) {
+  const WideBvhNode& n = m.bvh.nodes.at(index);
+  int depth = 0;
+  for (int c = 0; c < WideBvhNode::width; ++c) {
+    const vec3 lo(n.bounds[0][c], n.bounds[2][c], n.bounds[4][c]), hi(n.bounds[1][c], n.bounds[3][c], n.bounds[5][c]);
+    const uint32_t ref = n.child[c];
+    if (lo.x > hi.x) {  // an unused slot
+      EXPECT_EQ(WideBvhNode::leaf_packet_count(ref), 0u);
+      continue;
+    }
+    auto inside = [&](const vec3& p) {
+      return glm::all(glm::lessThanEqual(lo, p)) && glm::all(glm::lessThanEqual(p, hi));
+    };
+    if (WideBvhNode::is_leaf(ref)) {
+      const uint32_t first = WideBvhNode::leaf_first_packet(ref), count = WideBvhNode::leaf_packet_count(ref);
+      EXPECT_GE(count, 1u);
+      EXPECT_LE(size_t(first) + count, m.packets.size());
+      std::vector<uint32_t> ids;
+      for (uint32_t k = first; k < first + count && k < m.packets.size(); ++k)
+        for (uint32_t id : m.packets[k].id) {
+          EXPECT_TRUE(inside(pos[idx[3 * id]]) && inside(pos[idx[3 * id + 1]]) && inside(pos[idx[3 * id + 2]]))
+              << "node " << index << " child " << c << " does not enclose triangle " << id;
+          if (ids.empty() || ids.back() != id) ids.push_back(id);  // unused lanes repeat the last triangle
+        }
+      for (uint32_t id : ids) seen.at(id)++;
+    } else {
+      EXPECT_GT(ref, index) << "depth-first layout: children follow their parent";
+      if (ref <= index || ref >= m.bvh.nodes.size()) continue;
+      const WideBvhNode& ch = m.bvh.nodes[ref];
+      for (int g = 0; g < WideBvhNode::width; ++g) {
+        if (ch.bounds[0][g] > ch.bounds[1][g]) continue;
+        EXPECT_TRUE(inside(vec3(ch.bounds[0][g], ch.bounds[2][g], ch.bounds[4][g])) &&
+                    inside(vec3(ch.bounds[1][g], ch.bounds[3][g], ch.bounds[5][g])))
+            << "node " << index << " child " << c << " does not enclose its child's box " << g;
+      }
+      depth = std::max(depth, check_wide_subtree(m, pos, idx, ref, seen));
+    }
+  }
+  return 1 + depth;
+}
+
+// The whole mesh tree: well formed, every triangle in exactly one leaf, and
+// no deeper than the traversal stack allows (66 levels, mesh_accel_node_test.h).
+void expect_valid_mesh_tree(const MeshAccel& m, std::span<const vec3> pos, std::span<const uint32_t> idx) {
+  const size_t n = idx.size() / 3;
+  ASSERT_FALSE(m.bvh.nodes.empty());
+  ASSERT_EQ(m.triangles.size(), n);
+  std::vector<int> seen(n, 0);
+  EXPECT_LE(check_wide_subtree(m, pos, idx, 0, seen), 66);
+  size_t wrong = 0;
+  for (size_t t = 0; t < n; ++t) wrong += seen[t] != 1;
+  EXPECT_EQ(wrong, 0u) << "triangles in no leaf or in several";
+}
+
+// Rays straight down through the stack at (x, y), and slanted ones through
+// its middle, compared with brute force (closest and any hit).
+void expect_stack_queries(const SoupMesh& m, const MeshAccel& accel) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-0.2f, 0.2f);
+  int hits = 0;
+  for (int i = 0; i < 12; ++i) {
+    Ray r;
+    r.origin = vec3(0.1f + u(rng), 0.1f + u(rng), 2.f);
+    r.direction = i % 2 ? vec3(0.f, 0.f, -1.f) : glm::normalize(vec3(u(rng), u(rng), -1.f));
+    expect_same_closest(m.positions, m.indices, accel, r, &hits);
+    if (::testing::Test::HasFatalFailure()) FAIL() << "ray " << i;
+    EXPECT_EQ(occluded_mesh(accel, r), brute_closest(m.positions, m.indices, r).hit) << "ray " << i;
+  }
+  EXPECT_GE(hits, 10);
+}
+
+TEST(Bvh, StacksOfCoincidentTrianglesBuildValidTrees) {
+  // Hostile input (issue 12): no plane separates the centroids, so the
+  // builder splits by count all the way down. 200k copies of one triangle
+  // (shared vertices), then 200k different triangles whose boxes all have
+  // the same centre (the origin) but other sizes and shapes.
+  constexpr uint32_t n = 200000;
+  SoupMesh same;
+  same.positions = {vec3(-1.f, -1.f, 0.f), vec3(1.f, -1.f, 0.f), vec3(0.f, 1.f, 0.f)};
+  for (uint32_t i = 0; i < n; ++i) same.indices.insert(same.indices.end(), {0u, 1u, 2u});
+  MeshAccel a = build_mesh_accel(same.positions, same.indices);
+  expect_valid_mesh_tree(a, same.positions, same.indices);
+  expect_stack_queries(same, a);
+
+  SoupMesh centred;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> size(0.5f, 2.f), w(-1.f, 1.f);
+  for (uint32_t i = 0; i < n; ++i) {
+    // Box [-sx, sx] x [-sy, sy] x [-sz, sz], centre exactly 0: the vertices'
+    // extremes are negatives of each other.
+    const float sx = size(rng), sy = size(rng), sz = 0.2f * size(rng);
+    vec3 v[3] = {vec3(-sx, -sy, -sz), vec3(sx, -sy, sz), vec3(w(rng) * sx, sy, 0.f)};
+    std::shuffle(v, v + 3, rng);
+    for (const vec3& p : v) {
+      centred.indices.push_back(uint32_t(centred.positions.size()));
+      centred.positions.push_back(p);
+    }
+  }
+  MeshAccel b = build_mesh_accel(centred.positions, centred.indices);
+  expect_valid_mesh_tree(b, centred.positions, centred.indices);
+  expect_stack_queries(centred, b);
+}
+
+TEST(Bvh, FlatTrianglesBeyondTheFloatRangeBuild) {
+  // Boxes spanning more than the float range in a plane have an area of
+  // inf * 0 = NaN; the builder used to recurse on such a range until the
+  // stack overflowed (a 100-face OBJ crashed the renderer).
+  SoupMesh m;
+  m.positions = {vec3(-3e38f, -3e38f, 0.f), vec3(3e38f, -3e38f, 0.f), vec3(0.f, 3e38f, 0.f),
+                 vec3(0.f, 0.f, 1.f),       vec3(1.f, 0.f, 1.f),      vec3(0.f, 1.f, 1.f)};
+  for (int i = 0; i < 100; ++i) m.indices.insert(m.indices.end(), {0u, 1u, 2u});
+  for (int i = 0; i < 100; ++i) m.indices.insert(m.indices.end(), {3u, 4u, 5u});
+  MeshAccel accel = build_mesh_accel(m.positions, m.indices);
+  expect_valid_mesh_tree(accel, m.positions, m.indices);
+  int hits = 0;
+  for (float x : {0.1f, 0.3f, 2.f, -5.f}) {
+    Ray r;
+    r.origin = vec3(x, 0.1f, 3.f);
+    r.direction = vec3(0.f, 0.f, -1.f);
+    expect_same_closest(m.positions, m.indices, accel, r, &hits);
+  }
+  // The small triangles at z = 1 are hit; the huge ones overflow the
+  // triangle test itself (brute force misses them too).
+  EXPECT_EQ(hits, 2);
+}
+
+TEST(Bvh, TrianglesWithANonFiniteVertexAreLeftOut) {
+  // A NaN vertex does not reach the triangle's box (min and max pass over it),
+  // so only the vertices themselves tell.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  SoupMesh m;
+  m.positions = {vec3(0.f, 0.f, 0.f), vec3(1.f, 0.f, 0.f), vec3(0.f, 1.f, 0.f), vec3(nan, 0.f, 0.f),
+                 vec3(0.f, infinity, 0.f)};
+  m.indices = {0, 1, 2, 3, 1, 2, 0, 3, 2, 0, 1, 4, 2, 1, 0};
+  MeshAccel accel = build_mesh_accel(m.positions, m.indices);
+  EXPECT_EQ(accel.triangles, (std::vector<uint32_t>{0, 4}));
 }
 
 // Walks the flattened tree and checks its invariants; returns the depth.
