@@ -30,6 +30,7 @@ LoadedScene load_scene(const std::string& path, const LoadOptions& options) {
     case SceneFormat::gltf: {
       GltfReadOptions gltf;
       gltf.scene = options.gltf_scene;
+      gltf.images.max_texels = options.max_texture_texels;
       out.scene = read_gltf_scene(path, gltf, &out.warnings, &out.extensions);
       return out;
     }

@@ -18,6 +18,7 @@ struct LoadOptions {
   std::optional<CourseDialect> dialect;  // course scenes only (keep first: callers brace-initialise it)
   bool flat_normals = false;             // OBJ: normals missing from the file are faceted, not smooth
   int gltf_scene = -1;                   // glTF: the scene to load; -1: the file's default scene
+  uint64_t max_texture_texels = default_max_texture_texels;  // glTF images (files: PrepareOptions::images)
 };
 
 struct LoadedScene {

@@ -153,6 +153,7 @@ class GltfSceneBuilder {
     tinygltf::FsCallbacks callbacks = fsctx.callbacks();
     GltfImageContext images;
     images.model = &model_;
+    images.decode = options_.images;
 
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(callbacks);

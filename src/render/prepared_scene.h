@@ -56,6 +56,7 @@ PreparedLight prepare_light(const Light& light);
 
 struct PrepareOptions {
   BvhBuildOptions bvh;
+  DecodeOptions images;  // texture decoding: images.max_texels refuses larger textures (--max-texture-texels)
 };
 
 struct PreparedScene {
