@@ -4,7 +4,6 @@
 #include "scene/error.h"
 #include "scene/file_extension.h"
 
-#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -45,26 +44,27 @@ Pixels8 texture_pixels(const Texture& t) {
     return p;
   }
   if (t.path.empty()) throw Error("texture '" + t.name + "': neither pixels nor a file");
-  std::vector<uint8_t> bytes = read_file_bytes(t.path);
-  int w = 0, h = 0, c = 0;
-  if (unsigned char* d = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &c, 0)) {
-    p.width = w;
-    p.height = h;
-    p.channels = c;
-    p.data.assign(d, d + size_t(w) * size_t(h) * size_t(c));
-    stbi_image_free(d);
+  // Decoded as the renderer decodes it (image.h: libpng, libjpeg-turbo,
+  // libwebp, our BMP reader, else OpenImageIO), under the default size limit.
+  DecodedImage d = read_image_file(t.path);
+  p.width = d.width;
+  p.height = d.height;
+  p.channels = std::min(d.channels, 4);
+  p.data.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
+  const size_t n = size_t(p.width) * size_t(p.height), c = size_t(d.channels);
+  if (d.bits == 8 || d.bits == 16) {                          // 16-bit: the high byte
+    const size_t step = size_t(d.bits / 8), high = step - 1;  // (little-endian samples)
+    for (size_t i = 0; i < n; ++i)
+      for (size_t k = 0; k < size_t(p.channels); ++k)
+        p.data[i * size_t(p.channels) + k] = d.bytes[(i * c + k) * step + high];
     return p;
   }
-  // Formats stb does not read (tiff, exr, ...): through the image module.
-  Image img = read_image(t.path);
-  p.width = img.width;
-  p.height = img.height;
-  p.channels = std::min(img.channels, 4);
-  p.data.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
-  for (size_t i = 0, n = size_t(p.width) * size_t(p.height); i < n; ++i)
+  // Float formats (hdr, exr, ...): clamped to [0, 1] and rounded.
+  Image img = to_float_image(d);
+  for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < p.channels; ++k)
       p.data[i * size_t(p.channels) + size_t(k)] =
-          uint8_t(std::lround(std::clamp(img.pixels[i * size_t(img.channels) + size_t(k)], 0.f, 1.f) * 255.f));
+          uint8_t(std::lround(std::clamp(img.pixels[i * c + size_t(k)], 0.f, 1.f) * 255.f));
   return p;
 }
 

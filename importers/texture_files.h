@@ -20,7 +20,9 @@ struct Pixels8 {
   std::vector<uint8_t> data;
 };
 
-// The texture's pixels: Texture::pixels, or its file decoded. Throws rayform::Error.
+// The texture's pixels: Texture::pixels, or its file decoded by read_image_file
+// (image.h; 16-bit samples keep their high byte, float ones are clamped and
+// rounded). Throws rayform::Error.
 Pixels8 texture_pixels(const Texture& texture);
 
 // The texture as a file of one of the `wanted` formats (lower-case extensions

@@ -2,10 +2,10 @@
 
 #include "gltf/gltf_accessors.h"
 #include "gltf/gltf_messages.h"
+#include "image/image_decode.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>
-#include <webp/decode.h>
 
 #include <cstdint>
 #include <cstring>
@@ -24,30 +24,6 @@ std::string image_name(const tinygltf::Image& image, int index) {
   return where;
 }
 
-// WebP through libwebp, as RGBA8. False (with a reason) when it does not decode.
-bool decode_webp(tinygltf::Image* image, const unsigned char* bytes, size_t size, std::string* why) {
-  int width = 0, height = 0;
-  if (!WebPGetInfo(bytes, size, &width, &height) || width <= 0 || height <= 0) {
-    *why = "not a valid WebP stream";
-    return false;
-  }
-  struct Free {
-    void operator()(uint8_t* p) const { WebPFree(p); }
-  };
-  std::unique_ptr<uint8_t, Free> pixels(WebPDecodeRGBA(bytes, size, &width, &height));
-  if (!pixels) {
-    *why = "the WebP data is corrupt or truncated";
-    return false;
-  }
-  image->width = width;
-  image->height = height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image.assign(pixels.get(), pixels.get() + size_t(width) * size_t(height) * 4);
-  return true;
-}
-
 void mark_undecoded(tinygltf::Image* image) {
   image->image.clear();
   image->width = image->height = -1;
@@ -55,16 +31,12 @@ void mark_undecoded(tinygltf::Image* image) {
 
 }  // namespace
 
-bool is_webp(const unsigned char* bytes, size_t size) {
-  return size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
-}
-
 bool is_ktx2(const unsigned char* bytes, size_t size) {
   static const unsigned char magic[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
   return size >= sizeof magic && std::memcmp(bytes, magic, sizeof magic) == 0;
 }
 
-bool gltf_load_image(tinygltf::Image* image, const int image_index, std::string* err, std::string* warn, int, int,
+bool gltf_load_image(tinygltf::Image* image, const int image_index, std::string* err, std::string*, int, int,
                      const unsigned char* bytes, int size, void* user) {
   GltfImageContext* ctx = static_cast<GltfImageContext*>(user);
   const std::string where = gltf_path("images", image_index);
@@ -92,34 +64,44 @@ bool gltf_load_image(tinygltf::Image* image, const int image_index, std::string*
     mark_undecoded(image);
     return true;
   }
-  if (is_webp(bytes, length)) {
-    std::string why;
-    if (!decode_webp(image, bytes, length, &why)) {
-      ctx->warnings.push_back(image_name(*image, image_index) + ": cannot decode (" + why +
-                              "); textures using it are dropped");
-      mark_undecoded(image);
-    }
-    return true;
-  }
-  std::string e, w;
-  if (!tinygltf::LoadImageData(image, image_index, &e, &w, 0, 0, bytes, size, nullptr)) {
-    ctx->warnings.push_back(image_name(*image, image_index) + ": cannot decode (" + gltf_one_line(e) +
-                            "); textures using it are dropped");
+  // PNG, JPEG and WebP through image_decode.h (libpng, libjpeg-turbo, libwebp),
+  // under the texture-size limit; anything else is undecodable here.
+  DecodedImage decoded;
+  std::string why;
+  const DecodeResult r = decode_image_bytes(bytes, length, ctx->decode, &decoded, &why);
+  if (r != DecodeResult::ok || decoded.bits == 32) {
+    if (r == DecodeResult::too_large)
+      why = texture_size_message(uint64_t(decoded.width), uint64_t(decoded.height), 4, ctx->decode);
+    else why = "cannot decode (" + (r == DecodeResult::ok ? std::string("not an 8 or 16-bit image") : why) + ")";
+    ctx->warnings.push_back(image_name(*image, image_index) + ": " + why + "; textures using it are dropped");
     mark_undecoded(image);
     return true;
   }
-  if (warn && !w.empty()) *warn += w;
-  if (image->bits == 16) {  // keep the high byte: the Scene holds 8-bit texels
-    std::vector<unsigned char> eight(image->image.size() / 2);
-    for (size_t i = 0; i < eight.size(); ++i) {
-      uint16_t v;
-      std::memcpy(&v, &image->image[2 * i], 2);
-      eight[i] = static_cast<unsigned char>(v >> 8);
-    }
-    image->image = std::move(eight);
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  // RGBA8, as tinygltf's loader gave (grey repeated, missing alpha opaque);
+  // 16-bit samples keep their high byte: the Scene holds 8-bit texels.
+  const size_t texels = size_t(decoded.width) * size_t(decoded.height);
+  const int c = decoded.channels;
+  const size_t sample_bytes = decoded.bits / 8;
+  auto sample = [&](size_t i, int k) {  // channel k of texel i, 8-bit
+    const size_t at = (i * size_t(c) + size_t(k)) * sample_bytes;
+    if (sample_bytes == 1) return decoded.bytes[at];
+    uint16_t v;
+    std::memcpy(&v, &decoded.bytes[at], 2);
+    return static_cast<unsigned char>(v >> 8);
+  };
+  image->image.resize(texels * 4);
+  for (size_t i = 0; i < texels; ++i) {
+    unsigned char* d = &image->image[i * 4];
+    d[0] = sample(i, 0);
+    d[1] = sample(i, c >= 3 ? 1 : 0);
+    d[2] = sample(i, c >= 3 ? 2 : 0);
+    d[3] = c == 4 ? sample(i, 3) : c == 2 ? sample(i, 1) : 255;
   }
+  image->width = decoded.width;
+  image->height = decoded.height;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
   return true;
 }
 

@@ -160,6 +160,7 @@ class GltfSceneBuilder {
     tinygltf::FsCallbacks callbacks = fsctx.callbacks();
     GltfImageContext images;
     images.model = &model_;
+    images.decode.max_texels = options_.limits.texture_texels;
 
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(callbacks);

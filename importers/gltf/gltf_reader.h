@@ -23,9 +23,10 @@
 //   renderer's convention (v = 1 is the top row: v_scene = 1 - v_gltf);
 //   COLOR_0 as vertex colours;
 // - materials: gltf_material.h (metallic-roughness and KHR_materials_* onto
-//   Phong); base colour textures from tinygltf's decoded RGBA8 pixels (sRGB,
-//   modulating, standard lookup, sampler wrap and filter), WebP through
-//   libwebp (gltf_images.h), KTX2 only through a PNG/JPEG fallback source;
+//   Phong); base colour textures as RGBA8 pixels decoded by gltf_images.h
+//   (PNG, JPEG, WebP through the core's image_decode.h; sRGB, modulating,
+//   standard lookup, sampler wrap and filter), KTX2 only through a PNG/JPEG
+//   fallback source;
 //   KHR_texture_transform; alphaMode MASK; doubleSided; emissive;
 // - cameras and KHR_lights_punctual lights placed by their nodes' world
 //   transforms.
@@ -34,6 +35,7 @@
 #pragma once
 
 #include "gltf/gltf_material.h"
+#include "image/image_decode.h"
 #include "referenced_files.h"
 #include "scene/limits.h"
 #include "scene/scene.h"

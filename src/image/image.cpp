@@ -3,31 +3,62 @@
 #include "image/interrupt_cleanup.h"
 #include "image/oiio_plugin.h"
 #include "image/replace_file.h"
-#include "image/stb_codec.h"
+#include "image/stb_writer.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 namespace rayform {
 namespace fs = std::filesystem;
-Image read_image(const std::string& path) {
-  if (!fs::exists(path)) throw Error(path + ": cannot read image: no such file");
-  Image img;
+namespace {
+// Enough for every header decodes_in_memory looks at (a BMP's is the longest).
+constexpr size_t sniff_bytes = 256;
+}  // namespace
+
+DecodedImage read_image_file(const std::string& path, const DecodeOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + (fs::exists(path) ? ": cannot open image file" : ": cannot read image: no such file"));
+  std::vector<uint8_t> bytes(sniff_bytes);
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+  bytes.resize(size_t(in.gcount()));
+  if (decodes_in_memory(bytes.data(), bytes.size())) {
+    if (bytes.size() == sniff_bytes)
+      bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(path + ": cannot read image file");
+    return decode_image_memory(bytes.data(), bytes.size(), path, options);
+  }
+  // Every other format (tga, hdr, exr, tif, RLE bmp, ...): OpenImageIO.
+  DecodedImage img;
   std::string error;
-  bool ok = stb_reads(lower_extension(path)) ? stb_read(path, &img, &error) : oiio_read(path, &img, &error);
-  if (!ok) throw Error(path + ": cannot decode image" + (error.empty() ? "" : ": " + error));
+  if (!oiio_read(path, options, &img, &error))
+    throw Error(path + ": cannot decode image" + (error.empty() ? "" : ": " + error));
   return img;
 }
 
-bool read_image8(const std::string& path, Image8* image) {
-  if (!stb_reads(lower_extension(path))) return false;
-  if (!fs::exists(path)) throw Error(path + ": cannot read image: no such file");
-  std::string error;
-  if (stb_read8(path, image, &error)) return true;
-  if (!error.empty()) throw Error(path + ": cannot decode image: " + error);
-  return false;
+Image to_float_image(const DecodedImage& d) {
+  Image img(d.width, d.height, d.channels);
+  const size_t n = img.pixels.size();
+  if (d.bits == 8) {
+    for (size_t i = 0; i < n; ++i) img.pixels[i] = float(d.bytes[i]) / 255.f;
+  } else if (d.bits == 16) {
+    for (size_t i = 0; i < n; ++i) {
+      uint16_t v;
+      std::memcpy(&v, &d.bytes[2 * i], 2);
+      img.pixels[i] = float(v) / 65535.f;
+    }
+  } else {
+    std::memcpy(img.pixels.data(), d.bytes.data(), n * sizeof(float));
+  }
+  return img;
+}
+
+Image read_image(const std::string& path, const DecodeOptions& options) {
+  return to_float_image(read_image_file(path, options));
 }
 
 bool is_writable_image_path(const std::string& path) {

@@ -1,6 +1,10 @@
-// Float image buffers and their file I/O through OpenImageIO (format chosen by
-// the file extension). Row 0 is the top row; channels are interleaved.
+// Float and 8-bit image buffers and their file I/O: reading through
+// image_decode.h (or OpenImageIO), writing through stb_image_write, our BMP
+// writer or OpenImageIO (format chosen by the file extension). Row 0 is the
+// top row; channels are interleaved.
 #pragma once
+
+#include "image/image_decode.h"
 
 #include <string>
 #include <vector>
@@ -18,21 +22,22 @@ struct Image {
   const float* at(int x, int y) const { return pixels.data() + (size_t(y) * width + x) * channels; }
 };
 
-// Reads any format OpenImageIO knows; 8-bit data map to v / 255 exactly.
-// Throws rayform::Error naming the file on failure.
-Image read_image(const std::string& path);
-
-// 8-bit pixels as stored in the file (row 0 = top, interleaved channels).
+// Image8: 8-bit pixels as stored in a file (row 0 = top, interleaved channels).
 struct Image8 {
   int width = 0, height = 0, channels = 0;
   std::vector<unsigned char> pixels;
 };
 
-// Reads an 8-bit file (bmp, png, tga, jpg, ...) without widening it to float;
-// returns false when the file is not one stb reads at 8 bits (hdr, 16-bit
-// png, exr, ...), in which case read_image is the way. Throws rayform::Error
-// when the file is of such a type but cannot be decoded.
-bool read_image8(const std::string& path, Image8* image);
+// Reads an image file with its samples as stored (8-bit, 16-bit or float):
+// PNG, JPEG, WebP and uncompressed BMP in memory, every other format through
+// OpenImageIO (image_decode.h). The header's dimensions are checked against
+// options.max_texels before any pixel is decoded. Throws rayform::Error naming
+// the file when it is missing, too large or cannot be decoded.
+DecodedImage read_image_file(const std::string& path, const DecodeOptions& options = {});
+
+// The same as floats: 8-bit as v / 255, 16-bit as v / 65535, float as stored.
+Image read_image(const std::string& path, const DecodeOptions& options = {});
+Image to_float_image(const DecodedImage& decoded);
 
 // Writes by extension (bmp, png, tga, jpg, exr, hdr, tif, ...). Integer
 // formats store floor(clamp(v, 0, 1) * 255) per channel, as the course

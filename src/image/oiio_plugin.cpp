@@ -71,17 +71,23 @@ const Plugin& plugin() {
 
 bool oiio_can_write(const std::string& path) { return plugin().can_write(path.c_str()) != 0; }
 
-bool oiio_read(const std::string& path, Image* image, std::string* error) {
+bool oiio_read(const std::string& path, const DecodeOptions& options, DecodedImage* image, std::string* error) {
   const Plugin& p = plugin();
-  int w = 0, h = 0, c = 0;
-  float* data = nullptr;
+  int w = 0, h = 0, c = 0, bits = 0;
+  void* data = nullptr;
   char buf[512] = {0};
-  if (!p.read(path.c_str(), &w, &h, &c, &data, buf, sizeof buf)) {
+  const int r = p.read(path.c_str(), options.max_texels, &w, &h, &c, &bits, &data, buf, sizeof buf);
+  if (r == 2) check_texture_size(path, uint64_t(w), uint64_t(h), bits == 8 ? 4 : 16, options);  // throws
+  if (r != 1) {
     *error = buf;
     return false;
   }
-  *image = Image(w, h, c);
-  std::copy(data, data + size_t(w) * h * c, image->pixels.begin());
+  image->width = w;
+  image->height = h;
+  image->channels = c;
+  image->bits = bits;
+  const uint8_t* bytes = static_cast<const uint8_t*>(data);
+  image->bytes.assign(bytes, bytes + size_t(w) * h * c * size_t(bits / 8));
   p.free(data);
   return true;
 }

@@ -1,4 +1,6 @@
 // librayform_oiio.so: OpenImageIO behind the C interface of oiio_plugin_abi.h.
+// Reading checks the header's dimensions against the caller's texel limit
+// before any pixel is decoded, and returns 8-bit files as 8-bit samples.
 #include "image/oiio_plugin_abi.h"
 
 #include <OpenImageIO/imageio.h>
@@ -24,29 +26,47 @@ __attribute__((visibility("default"))) int rayform_oiio_can_write(const char* pa
   return OIIO::ImageOutput::create(path) ? 1 : 0;
 }
 
-__attribute__((visibility("default"))) int rayform_oiio_read(const char* path, int* width, int* height, int* channels,
-                                                             float** pixels, char* error, size_t error_size) {
-  auto in = OIIO::ImageInput::open(path);
+__attribute__((visibility("default"))) int rayform_oiio_read(const char* path, unsigned long long max_texels,
+                                                             int* width, int* height, int* channels, int* bits,
+                                                             void** pixels, char* error, size_t error_size) {
+  // Alpha as the file stores it: OpenImageIO would premultiply unassociated
+  // alpha (TGA, TIFF, ...) by default; textures take it as stb_image gave it.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) {
     set_error(error, error_size, OIIO::geterror());
     return 0;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  size_t n = size_t(spec.width) * spec.height * spec.nchannels;
-  float* data = static_cast<float*>(std::malloc(n * sizeof(float)));
-  if (!data || !in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {
-    set_error(error, error_size, data ? in->geterror() : "out of memory");
-    std::free(data);
+  // The header only has been read: refuse what the caller's limit forbids
+  // before allocating or decoding anything.
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0 || spec.nchannels > 64) {
+    set_error(error, error_size,
+              "unsupported image layout (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+                  std::to_string(spec.depth) + ", " + std::to_string(spec.nchannels) + " channels)");
     return 0;
   }
   *width = spec.width;
   *height = spec.height;
   *channels = spec.nchannels;
+  bool eight = spec.format == OIIO::TypeDesc::UINT8;
+  for (const OIIO::TypeDesc& t : spec.channelformats) eight = eight && t == OIIO::TypeDesc::UINT8;
+  *bits = eight ? 8 : 32;
+  if ((unsigned long long)spec.width * (unsigned long long)spec.height > max_texels) return 2;
+  const size_t n = size_t(spec.width) * spec.height * spec.nchannels;
+  void* data = std::malloc(n * (eight ? 1 : sizeof(float)));
+  const OIIO::TypeDesc type = eight ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+  if (!data || !in->read_image(0, 0, 0, spec.nchannels, type, data)) {
+    set_error(error, error_size, data ? in->geterror() : "out of memory");
+    std::free(data);
+    return 0;
+  }
   *pixels = data;
   return 1;
 }
 
-__attribute__((visibility("default"))) void rayform_oiio_free(float* pixels) { std::free(pixels); }
+__attribute__((visibility("default"))) void rayform_oiio_free(void* pixels) { std::free(pixels); }
 
 __attribute__((visibility("default"))) int rayform_oiio_write(const char* format_path, const char* path, int width,
                                                               int height, int channels, const float* pixels,

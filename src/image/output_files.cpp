@@ -9,6 +9,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <system_error>
 #include <utility>
 #include <unistd.h>
@@ -91,13 +92,23 @@ void OutputFiles::protect(const std::string& path) {
   if (!path.empty()) protected_.push_back(path);
 }
 
+namespace {
+std::vector<uint8_t> file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
 std::vector<std::string> OutputFiles::commit() {
+  // A protected file may only be "replaced" by its own bytes (a texture
+  // copied onto itself when a converted scene is converted again).
   for (const Entry& e : entries_)
     for (const std::string& p : protected_) {
       std::error_code ec;
-      if (fs::exists(e.path, ec) && fs::equivalent(e.path, p, ec))
-        throw Error(e.path + ": writing it would replace " + p +
-                    ", which the scene was read from; choose another output name or folder");
+      if (!fs::exists(e.path, ec) || !fs::equivalent(e.path, p, ec)) continue;
+      if ((e.temp.empty() ? e.bytes : file_bytes(e.temp)) == file_bytes(p)) continue;
+      throw Error(e.path + ": writing it would replace " + p +
+                  ", which the scene was read from; choose another output name or folder");
     }
   // Main file last: readers never see it before what it names.
   std::stable_partition(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.path != main_; });

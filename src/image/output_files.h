@@ -31,7 +31,8 @@ class OutputFiles {
   void add_written(const std::string& path, const std::string& temp_path);
   bool has(const std::string& path) const;
   // A file that must never be replaced (an input of the conversion): commit
-  // refuses, before renaming anything, when an output is that file.
+  // refuses, before renaming anything, when an output is that file with
+  // other content.
   void protect(const std::string& path);
   // A fresh temporary folder beside the main file, removed by the destructor.
   std::string temp_dir();

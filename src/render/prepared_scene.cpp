@@ -156,8 +156,10 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   }
   // Decode the used textures and cube-map faces in parallel (PNG/JPEG decoding
   // dominates preparation of textured scenes).
-  tbb::parallel_for(size_t(0), to_decode.size(),
-                    [&](size_t j) { *to_decode[j].second = decode_texture(scene.textures[to_decode[j].first]); });
+  tbb::parallel_for(size_t(0), to_decode.size(), [&](size_t j) {
+    *to_decode[j].second =
+        decode_texture(scene.textures[to_decode[j].first], DecodeOptions{options.limits.texture_texels});
+  });
   return p;
 }
 

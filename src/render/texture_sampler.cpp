@@ -21,29 +21,30 @@ void expand_to_rgba(const T* src, int channels, T opaque, T* dst) {
 
 }  // namespace
 
-TextureImage decode_texture(const Texture& texture) {
+TextureImage decode_texture(const Texture& texture, const DecodeOptions& options) {
   TextureImage t;
   t.wrap_u = texture.wrap_u;
   t.wrap_v = texture.wrap_v;
   t.filter = texture.filter;
   t.lookup = texture.lookup;
-  Image8 img8;
-  const bool eight_bit = !texture.pixels.empty() || read_image8(texture.path, &img8);
-  if (eight_bit) {
+  DecodedImage file;
+  if (texture.pixels.empty()) file = read_image_file(texture.path, options);
+  if (!texture.pixels.empty() || file.bits == 8) {
     for (int v = 0; v < 256; ++v) t.to_linear[v] = texture.srgb ? srgb_to_linear(v / 255.f) : v / 255.f;
-    const uint8_t* src = texture.pixels.empty() ? img8.pixels.data() : texture.pixels.data();
-    int c = texture.pixels.empty() ? img8.channels : texture.channels;
-    t.width = texture.pixels.empty() ? img8.width : texture.width;
-    t.height = texture.pixels.empty() ? img8.height : texture.height;
+    const uint8_t* src = texture.pixels.empty() ? file.bytes.data() : texture.pixels.data();
+    int c = texture.pixels.empty() ? file.channels : texture.channels;
+    t.width = texture.pixels.empty() ? file.width : texture.width;
+    t.height = texture.pixels.empty() ? file.height : texture.height;
     if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
     t.rgba8.resize(size_t(t.width) * t.height * 4);
     for (size_t i = 0; i < size_t(t.width) * t.height; ++i)
       expand_to_rgba(src + i * c, c, uint8_t(255), &t.rgba8[i * 4]);
     return t;
   }
-  Image src = read_image(texture.path);
-  int c = src.channels;
+  int c = file.channels;
   if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
+  Image src = to_float_image(file);
+  file = DecodedImage();
   t.width = src.width;
   t.height = src.height;
   t.rgbaf.resize(size_t(t.width) * t.height * 4);

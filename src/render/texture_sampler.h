@@ -1,7 +1,8 @@
 // Texture lookups on decoded images (row 0 = top). Textures from 8-bit files
 // keep 4 bytes a texel and decode through a 256-entry table (raw v/255, or
 // sRGB to linear), so a 1024^2 face costs 4 MB instead of 16; other sources
-// (hdr, 16-bit, exr, ...) are kept as linear float RGBA.
+// (hdr, 16-bit, exr, ...) are kept as linear float RGBA. Files are decoded by
+// image_decode.h under its texture-size limit.
 #pragma once
 
 #include "image/image.h"
@@ -31,9 +32,11 @@ struct TextureImage {
   size_t memory_bytes() const { return rgba8.capacity() + rgbaf.capacity() * sizeof(float); }
 };
 
-// Decodes a scene texture (sRGB-decoded to linear when srgb is set).
-// Throws rayform::Error when the file cannot be read.
-TextureImage decode_texture(const Texture& texture);
+// Decodes a scene texture (sRGB-decoded to linear when srgb is set): the
+// Texture's own pixels, or its file through read_image_file (image.h).
+// Throws rayform::Error when the file cannot be read or decoded, or declares
+// more than options.max_texels texels.
+TextureImage decode_texture(const Texture& texture, const DecodeOptions& options = {});
 
 // RGBA at texture coordinate uv (v = 1 is the top row of the picture).
 vec4 sample_texture(const TextureImage& t, vec2 uv);

@@ -491,6 +491,29 @@ TEST_F(GltfExtensions, BrokenWebpFallsBackToTheCoreSourceOrIsAnError) {
       << error(b);
 }
 
+// Images are decoded by the core's image_decode.h under the texel limit of
+// GltfReadOptions::images: a larger one is dropped with a warning, as an
+// undecodable one is.
+TEST_F(GltfExtensions, ImagesOverTheTexelLimitAreDroppedWithAWarning) {
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
+  GltfBuilder b = textured({{"source", 0}}, json::array());
+  b.j["images"] = json::array({{{"uri", "data:image/png;base64," + png}}});
+  GltfReadOptions options;
+  options.images.max_texels = 4;
+  Scene s = read_gltf_scene(write("t.glb", b.glb()), options);
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_EQ(s.textures[0].width, 2);
+  EXPECT_EQ(s.textures[0].channels, 4);  // RGBA, as tinygltf's loader gave
+  options.images.max_texels = 3;
+  std::vector<std::string> warnings;
+  s = read_gltf_scene(write("t.glb", b.glb()), options, &warnings);
+  EXPECT_TRUE(s.textures.empty());
+  EXPECT_TRUE(test::any_contains(warnings,
+                                 "images[0]: texture is 2x2 (16 bytes decoded), more than the limit of 3 texels "
+                                 "(raise it with --limit texture-texels=N); textures using it are dropped"));
+}
+
 TEST_F(GltfExtensions, BasisuUsesTheFallbackSourceOrIsAnErrorNamingTheTexture) {
   const std::vector<uint8_t> ktx2 = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n', 0, 0, 0, 0};
   const std::string png =

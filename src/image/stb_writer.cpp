@@ -1,10 +1,9 @@
-#include "image/stb_codec.h"
+#include "image/stb_writer.h"
 
 #include "image/bmp_writer.h"
 #include "image/checked_write.h"
 #include "image/quantize.h"
 
-#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -13,61 +12,8 @@
 
 namespace rayform {
 
-bool stb_reads(const std::string& ext) {
-  return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg" || ext == ".hdr" ||
-         ext == ".gif" || ext == ".pnm" || ext == ".ppm" || ext == ".pgm" || ext == ".psd";
-}
-
 bool stb_writes(const std::string& ext) {
   return ext == ".bmp" || ext == ".png" || ext == ".tga" || ext == ".jpg" || ext == ".jpeg" || ext == ".hdr";
-}
-
-namespace {
-// Moves stb's w x h x c samples into *image, each divided by `full_scale` (1
-// for HDR floats, 255 or 65535 for integers), and frees them. nullptr: stb's
-// reason in *error.
-template <class Sample>
-bool take_stb_samples(Sample* data, int w, int h, int c, float full_scale, Image* image, std::string* error) {
-  if (!data) {
-    *error = stbi_failure_reason();
-    return false;
-  }
-  *image = Image(w, h, c);
-  for (size_t i = 0; i < image->pixels.size(); ++i) image->pixels[i] = float(data[i]) / full_scale;
-  stbi_image_free(data);
-  return true;
-}
-}  // namespace
-
-bool stb_read(const std::string& path, Image* image, std::string* error) {
-  int w = 0, h = 0, c = 0;
-  const char* file = path.c_str();
-  if (stbi_is_hdr(file)) {
-    float* data = stbi_loadf(file, &w, &h, &c, 0);
-    return take_stb_samples(data, w, h, c, 1.f, image, error);
-  }
-  if (stbi_is_16_bit(file)) {
-    stbi_us* data = stbi_load_16(file, &w, &h, &c, 0);
-    return take_stb_samples(data, w, h, c, 65535.f, image, error);
-  }
-  stbi_uc* data = stbi_load(file, &w, &h, &c, 0);
-  return take_stb_samples(data, w, h, c, 255.f, image, error);
-}
-
-bool stb_read8(const std::string& path, Image8* image, std::string* error) {
-  if (stbi_is_hdr(path.c_str()) || stbi_is_16_bit(path.c_str())) return false;
-  int w = 0, h = 0, c = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &c, 0);
-  if (!data) {
-    *error = stbi_failure_reason();
-    return false;
-  }
-  image->width = w;
-  image->height = h;
-  image->channels = c;
-  image->pixels.assign(data, data + size_t(w) * h * c);
-  stbi_image_free(data);
-  return true;
 }
 
 bool stb_writes_8bit(const std::string& ext) {

@@ -1,0 +1,66 @@
+#include "image/image_decode.h"
+
+#include "image/image_decoders.h"
+#include "scene/error.h"
+
+#include <cstdio>
+
+namespace rayform {
+
+namespace {
+// "2.1 GB", "512 MB", "64 kB": decimal units, one decimal.
+std::string byte_count(uint64_t bytes) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
+  double v = double(bytes);
+  int u = 0;
+  while (v >= 1000 && u < 6) {
+    v /= 1000;
+    ++u;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.1f %s", v, units[u]);
+  return buf;
+}
+}  // namespace
+
+std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes_per_texel,
+                                 const DecodeOptions& options) {
+  const uint64_t texels = width * height;
+  const uint64_t bytes = texels > UINT64_MAX / bytes_per_texel ? UINT64_MAX : texels * bytes_per_texel;
+  return "texture is " + std::to_string(width) + "x" + std::to_string(height) + " (" + byte_count(bytes) +
+         " decoded), more than the limit of " + std::to_string(options.max_texels) + " texels (raise it with --limit texture-texels=N)";
+}
+
+void check_texture_size(const std::string& name, uint64_t width, uint64_t height, uint64_t bytes_per_texel,
+                        const DecodeOptions& options) {
+  if (exceeds_texel_limit(width, height, options))
+    throw Error(name + ": " + texture_size_message(width, height, bytes_per_texel, options));
+}
+
+bool decodes_in_memory(const uint8_t* bytes, size_t size) {
+  return is_png(bytes, size) || is_jpeg(bytes, size) || is_webp(bytes, size) || is_simple_bmp(bytes, size);
+}
+
+DecodeResult decode_image_bytes(const uint8_t* bytes, size_t size, const DecodeOptions& options, DecodedImage* out,
+                                std::string* error) {
+  if (is_png(bytes, size)) return decode_png(bytes, size, options, out, error);
+  if (is_jpeg(bytes, size)) return decode_jpeg(bytes, size, options, out, error);
+  if (is_webp(bytes, size)) return decode_webp(bytes, size, options, out, error);
+  if (is_simple_bmp(bytes, size)) return decode_bmp(bytes, size, options, out, error);
+  *error = "not a PNG, JPEG, WebP or uncompressed BMP file";
+  return DecodeResult::corrupt;
+}
+
+DecodedImage decode_image_memory(const uint8_t* bytes, size_t size, const std::string& name,
+                                 const DecodeOptions& options) {
+  DecodedImage out;
+  std::string error;
+  const DecodeResult r = decode_image_bytes(bytes, size, options, &out, &error);
+  if (r == DecodeResult::too_large)
+    throw Error(name + ": " +
+                texture_size_message(uint64_t(out.width), uint64_t(out.height), out.bits == 8 ? 4 : 16, options));
+  if (r != DecodeResult::ok) throw Error(name + ": cannot decode image: " + error);
+  return out;
+}
+
+}  // namespace rayform

@@ -1,0 +1,71 @@
+// Decoding image files that may be hostile (textures of downloaded scenes).
+// Every decoder reads the header first and refuses an image whose declared
+// size exceeds DecodeOptions::max_texels before a single pixel is decoded or
+// allocated, so a few bytes cannot ask for gigabytes (a decompression bomb).
+//
+// In memory, through libraries that are fuzzed continuously (Debian's
+// packages): PNG (libpng), JPEG (libjpeg-turbo), WebP (libwebp), and the
+// course's uncompressed 24/32-bit BMP through our own bounds-checked reader
+// (bmp_reader.cpp; OpenImageIO would cost every course render ~0.4 s of
+// start-up). Everything else (TGA, HDR, RLE or paletted BMP, GIF, PNM, PSD,
+// EXR, TIFF, ...) goes to OpenImageIO's readers (oiio_plugin.h), which get the
+// same limit. stb_image, not meant for untrusted files, decodes nothing.
+#pragma once
+
+#include "scene/limits.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+struct DecodeOptions {
+  // Images of more texels (width * height) are refused before decoding. The
+  // default is Limits::texture_texels (scene/limits.h: 2^28, 16384 x 16384,
+  // the largest texture a GPU accepts; 1 GiB as RGBA8).
+  uint64_t max_texels = Limits{}.texture_texels;
+};
+
+// Samples as the file stores them: bits 8 (uint8), 16 (uint16, native byte
+// order) or 32 (float, linear values as hdr/exr store them). Row 0 = top,
+// channels (1-4) interleaved.
+struct DecodedImage {
+  int width = 0, height = 0, channels = 0, bits = 8;
+  std::vector<uint8_t> bytes;  // width * height * channels * bits / 8
+};
+
+enum class DecodeResult { ok, corrupt, too_large };
+
+inline bool exceeds_texel_limit(uint64_t width, uint64_t height, const DecodeOptions& options) {
+  return width * height > options.max_texels;  // (each side < 2^32: no wrap)
+}
+
+// Whether decode_image_memory handles these bytes (PNG, JPEG, WebP, or a BMP
+// our reader takes); false sends the file to OpenImageIO.
+bool decodes_in_memory(const uint8_t* bytes, size_t size);
+
+// Decodes PNG, JPEG, WebP or uncompressed BMP bytes. Throws rayform::Error
+// naming `name`: "NAME: texture is WxH (2.1 GB decoded), more than the limit
+// of N texels (raise it with --limit texture-texels=N)" when too large, "NAME: cannot decode
+// image: REASON" when corrupt, truncated or of another format.
+DecodedImage decode_image_memory(const uint8_t* bytes, size_t size, const std::string& name,
+                                 const DecodeOptions& options = {});
+
+// The same without throwing: too_large leaves the header's dimensions (and
+// no pixels) in *out, corrupt the reason in *error.
+DecodeResult decode_image_bytes(const uint8_t* bytes, size_t size, const DecodeOptions& options, DecodedImage* out,
+                                std::string* error);
+
+// "texture is WxH (2.1 GB decoded), more than the limit of N texels
+// (raise it with --limit texture-texels=N)"; bytes_per_texel: of the texture it would have made
+// (4 for RGBA8, 16 for float RGBA).
+std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes_per_texel,
+                                 const DecodeOptions& options);
+// Throws rayform::Error "NAME: " + texture_size_message(...) when the size
+// exceeds the limit.
+void check_texture_size(const std::string& name, uint64_t width, uint64_t height, uint64_t bytes_per_texel,
+                        const DecodeOptions& options);
+
+}  // namespace rayform
