@@ -41,6 +41,46 @@ assert len(TGA_HUGE) == 23
 HDR_HEADER = b"#?RADIANCE\n# rayform fuzz regression: zero-length RLE run\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 64\n"
 HDR_ZERO_RUN = HDR_HEADER + bytes([2, 2, 0, 64]) + bytes([0]) * 2
 
+
+
+def jpeg(sof, width, quant16, scan, entropy):
+    """A one-component JPEG: 16-bit (quant16) or 8-bit quantisation table 0
+    of 65535s (255s), DC table 0 with one 1-bit code for category 15, AC table
+    0 with one 1-bit code for end-of-block, frame type `sof` (0xC0 baseline,
+    0xC2 progressive) of width x 8 pixels, one scan (Ss, Se, Ah<<4|Al) over
+    `entropy` (already byte-stuffed)."""
+    def seg(marker, body):
+        return bytes([0xFF, marker]) + struct.pack(">H", len(body) + 2) + body
+    dqt = bytes([0x10 if quant16 else 0x00]) + (b"\xff\xff" * 64 if quant16 else b"\xff" * 64)
+    sof_body = bytes([8]) + struct.pack(">HH", 8, width) + bytes([1, 1, 0x11, 0])
+    dht = bytes([0x00, 1] + [0] * 15 + [15]) + bytes([0x10, 1] + [0] * 15 + [0])
+    sos = bytes([1, 1, 0x00]) + bytes(scan)
+    return (b"\xff\xd8" + seg(0xDB, dqt) + seg(sof, sof_body) + seg(0xC4, dht) + seg(0xDA, sos) + entropy
+            + b"\xff\xd9")
+
+
+def dc_blocks(count, with_eob):
+    """`count` blocks whose DC difference is +32767 (code 0, then fifteen 1
+    bits), each followed by an end-of-block code when `with_eob`; padded with
+    1 bits and byte-stuffed."""
+    bits = ("0" + "1" * 15 + ("0" if with_eob else "")) * count
+    bits += "1" * (-len(bits) % 8)
+    out = bytearray()
+    for i in range(0, len(bits), 8):
+        out.append(int(bits[i:i + 8], 2))
+        if out[-1] == 0xFF:
+            out.append(0)
+    return bytes(out)
+
+
+# Baseline JPEG, 16-bit quantiser 65535: the second block's DC is 65534, and
+# stb's `dc * dequant[0]` (stbi__jpeg_decode_block) overflows int.
+JPEG_DC_OVERFLOW = jpeg(0xC0, 16, True, [0, 63, 0x00], dc_blocks(2, True))
+# Progressive JPEG, DC scan with successive approximation Al = 13: stb's
+# `dc * (1 << j->succ_low)` (stbi__jpeg_decode_block_prog_dc) overflows int
+# from the ninth block (9 * 32767 << 13 > 2^31).
+JPEG_PROG_DC_SHIFT = jpeg(0xC2, 80, False, [0, 0, 0x0D], dc_blocks(10, False))
+
 OBJ_TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
 
 
@@ -93,6 +133,8 @@ def main():
     # ---- image: the first byte picks the extension --------------------------
     put("image", "tga_rle_23170x23170.bin", image_input(".tga", TGA_HUGE))
     put("image", "hdr_rle_zero_run.bin", image_input(".hdr", HDR_ZERO_RUN))
+    put("image", "jpeg_dc_dequant_overflow.bin", image_input(".jpg", JPEG_DC_OVERFLOW))
+    put("image", "jpeg_progressive_dc_shift_overflow.bin", image_input(".jpg", JPEG_PROG_DC_SHIFT))
 
     # ---- obj: model.obj %% model.mtl %% texture (tex.tga, tex.bmp, ... name it) ---
     put("obj", "map_kd_tga_23170x23170.obj", (OBJ_TRIANGLE + "mtllib model.mtl\nusemtl big\nf 1/1 2/2 3/3\n").encode()
