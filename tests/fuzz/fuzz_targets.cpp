@@ -169,13 +169,16 @@ FuzzOutcome fuzz_gltf(const uint8_t* data, size_t size, const FuzzLimits& limits
 // Image: the first byte picks the extension (image_extensions), the rest is the file.
 FuzzOutcome fuzz_image(const uint8_t* data, size_t size, const FuzzLimits& limits) {
   if (size > limits.max_input_bytes) return skipped();
-  if (size == 0) return FuzzOutcome{.ok = true};
+  FuzzOutcome o;
+  if (size == 0) {
+    o.ok = true;  // no extension, no file
+    return o;
+  }
   constexpr size_t n = sizeof image_extensions / sizeof image_extensions[0];
   const std::string name = std::string("image") + image_extensions[data[0] % n];
   const std::string_view bytes = bytes_of(data + 1, size - 1);
   workspace().put(name.c_str(), &bytes);
   const std::string path = (workspace().scene_folder() / name).string();
-  FuzzOutcome o;
   try {
     Image8 image8;
     (void)read_image8(path, &image8);
