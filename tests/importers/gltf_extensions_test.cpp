@@ -500,12 +500,12 @@ TEST_F(GltfExtensions, ImagesOverTheTexelLimitAreDroppedWithAWarning) {
   GltfBuilder b = textured({{"source", 0}}, json::array());
   b.j["images"] = json::array({{{"uri", "data:image/png;base64," + png}}});
   GltfReadOptions options;
-  options.images.max_texels = 4;
+  options.limits.texture_texels = 4;
   Scene s = read_gltf_scene(write("t.glb", b.glb()), options);
   ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(s.textures[0].width, 2);
   EXPECT_EQ(s.textures[0].channels, 4);  // RGBA, as tinygltf's loader gave
-  options.images.max_texels = 3;
+  options.limits.texture_texels = 3;
   std::vector<std::string> warnings;
   s = read_gltf_scene(write("t.glb", b.glb()), options, &warnings);
   EXPECT_TRUE(s.textures.empty());
