@@ -62,6 +62,16 @@ void check_output_path(const std::string& path, const char* what) {
     throw Error(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
 }
 
+void check_render_job_memory(const RenderJob& job) {
+  RenderOptions outputs = job.render;
+  outputs.depth = job.depth.has_value();
+  outputs.normals = !job.normals.empty();
+  outputs.albedo = !job.albedo.empty();
+  if (is_8bit_image_path(job.output)) outputs.color_format = ColorFormat::unit8;
+  if (std::string problem = render_memory_problem(outputs, available_memory_bytes()); !problem.empty())
+    throw Error(job.output + ": " + problem);
+}
+
 void run_render_job(const RenderJob& job) {
   check_output_path(job.output, "colour");
   if (job.depth) {
@@ -74,15 +84,7 @@ void run_render_job(const RenderJob& job) {
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw Error(problem);
-  {  // the outputs' memory, before the scene is read (render() checks it again)
-    RenderOptions outputs = job.render;
-    outputs.depth = job.depth.has_value();
-    outputs.normals = !job.normals.empty();
-    outputs.albedo = !job.albedo.empty();
-    if (is_8bit_image_path(job.output)) outputs.color_format = ColorFormat::unit8;
-    if (std::string problem = render_memory_problem(outputs, available_memory_bytes()); !problem.empty())
-      throw Error(job.output + ": " + problem);
-  }
+  check_render_job_memory(job);  // before the scene is read (render() checks it again)
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   // --threads bounds the whole job (the BVH build too), not only the render.

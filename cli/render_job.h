@@ -42,6 +42,10 @@ struct RenderJob {
 // Runs the job; throws rayform::Error with a message for the user.
 void run_render_job(const RenderJob& job);
 
+// Throws rayform::Error when the job's outputs need more memory than the
+// machine has (render_memory.h); run_render_job's first check.
+void check_render_job_memory(const RenderJob& job);
+
 // Checks an output path before any work is done (known extension, folder exists).
 void check_output_path(const std::string& path, const char* what);
 

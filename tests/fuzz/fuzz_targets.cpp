@@ -122,10 +122,14 @@ std::vector<std::string> outside_uses(const Scene& scene) {
 FuzzOutcome load_and_prepare(const std::string& file) {
   FuzzOutcome o;
   try {
-    LoadedScene loaded = load_scene((workspace().scene_folder() / file).string());
+    LoadOptions lo;
+    lo.access.confine = true;  // files from strangers: rayform's --confine
+    LoadedScene loaded = load_scene((workspace().scene_folder() / file).string(), lo);
     o.outside = outside_uses(loaded.scene);
-    (void)scene_stats(loaded.scene);
-    (void)prepare_scene(loaded.scene);
+    (void)scene_stats(loaded.scene, lo.limits.instances);
+    PrepareOptions po;
+    po.limits = lo.limits;
+    (void)prepare_scene(loaded.scene, po);
     o.ok = true;
   } catch (const Error& e) {
     o.message = e.what();
@@ -180,9 +184,7 @@ FuzzOutcome fuzz_image(const uint8_t* data, size_t size, const FuzzLimits& limit
   workspace().put(name.c_str(), &bytes);
   const std::string path = (workspace().scene_folder() / name).string();
   try {
-    Image8 image8;
-    (void)read_image8(path, &image8);
-    (void)read_image(path);
+    (void)to_float_image(read_image_file(path));  // as textures are read: samples as stored, then floats
     o.ok = true;
   } catch (const Error& e) {
     o.message = e.what();
@@ -207,7 +209,8 @@ FuzzOutcome fuzz_course_args(const uint8_t* data, size_t size, const FuzzLimits&
   FuzzOutcome o;
   try {
     (void)cli::is_course_command_line(args);
-    (void)cli::parse_course_command_line(args);
+    const cli::RenderJob job = cli::parse_course_command_line(args);
+    cli::check_render_job_memory(job);  // what `rayform` checks before it reads the scene
     o.ok = true;
   } catch (const cli::UsageError& e) {
     o.message = e.what();
