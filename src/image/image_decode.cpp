@@ -28,7 +28,8 @@ std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes
   const uint64_t texels = width * height;
   const uint64_t bytes = texels > UINT64_MAX / bytes_per_texel ? UINT64_MAX : texels * bytes_per_texel;
   return "texture is " + std::to_string(width) + "x" + std::to_string(height) + " (" + byte_count(bytes) +
-         " decoded), more than the limit of " + std::to_string(options.max_texels) + " texels (raise it with --limit texture-texels=N)";
+         " decoded), more than the limit of " + std::to_string(options.max_texels) +
+         " texels (raise it with --limit texture-texels=N)";
 }
 
 void check_texture_size(const std::string& name, uint64_t width, uint64_t height, uint64_t bytes_per_texel,

@@ -330,7 +330,8 @@ TEST_F(ImageDecode, HugeDimensionsAreRefusedBeforeAnyAllocation) {
                         Case{"bmp", bmp, "texture is 30000x30000 (3.6 GB decoded)"}}) {
     fs::path p = write_file(dir / ("big." + k.ext), k.file);
     EXPECT_EQ(error_of([&] { read_image_file(p.string()); }),
-              p.string() + ": " + k.says + ", more than the limit of 268435456 texels (raise it with --limit texture-texels=N)");
+              p.string() + ": " + k.says +
+                  ", more than the limit of 268435456 texels (raise it with --limit texture-texels=N)");
   }
   EXPECT_LT(max_rss_kb() - rss_before, 100 * 1024) << "kB of peak memory grew while refusing";
 }
@@ -345,9 +346,10 @@ TEST_F(ImageDecode, TheLimitIsAnOption) {
   less.max_texels = 255;
   for (const fs::path& f : {p, q, t}) {
     EXPECT_EQ(read_image_file(f.string(), exact).width, 16);
-    EXPECT_EQ(
-        error_of([&] { read_image_file(f.string(), less); }),
-        f.string() + ": texture is 16x16 (1.0 kB decoded), more than the limit of 255 texels (raise it with --limit texture-texels=N)");
+    EXPECT_EQ(error_of([&] { read_image_file(f.string(), less); }),
+              f.string() +
+                  ": texture is 16x16 (1.0 kB decoded), more than the limit of 255 texels (raise it with --limit "
+                  "texture-texels=N)");
   }
   EXPECT_EQ(DecodeOptions().max_texels, uint64_t(1) << 28);
   EXPECT_EQ(DecodeOptions().max_texels, Limits{}.texture_texels);
