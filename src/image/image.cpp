@@ -1,5 +1,6 @@
 #include "image/image.h"
 
+#include "image/header_check.h"
 #include "image/interrupt_cleanup.h"
 #include "image/oiio_plugin.h"
 #include "image/replace_file.h"
@@ -18,6 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 // Enough for every header decodes_in_memory looks at (a BMP's is the longest).
 constexpr size_t sniff_bytes = 256;
+// How much of a file OpenImageIO will read is checked first (header_check.h).
+constexpr size_t header_bytes = 64 * 1024;
 }  // namespace
 
 DecodedImage read_image_file(const std::string& path, const DecodeOptions& options) {
@@ -32,7 +35,20 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
     if (in.bad()) throw Error(path + ": cannot read image file");
     return decode_image_memory(bytes.data(), bytes.size(), path, options);
   }
-  // Every other format (tga, hdr, exr, tif, RLE bmp, ...): OpenImageIO.
+  // Every other format (tga, hdr, exr, tif, RLE bmp, ...): OpenImageIO, once
+  // the headers it trusts too far are checked (header_check.h).
+  {
+    if (bytes.size() == sniff_bytes) {  // more to read
+      bytes.resize(header_bytes);
+      in.read(reinterpret_cast<char*>(bytes.data()) + sniff_bytes, std::streamsize(header_bytes - sniff_bytes));
+      bytes.resize(sniff_bytes + size_t(in.gcount()));
+    }
+    std::error_code ec;
+    const uint64_t file_bytes = fs::file_size(path, ec);
+    if (std::string problem = header_problem(bytes.data(), bytes.size(), ec ? bytes.size() : file_bytes, options);
+        !problem.empty())
+      throw Error(path + ": " + (problem.rfind("texture is", 0) == 0 ? "" : "cannot decode image: ") + problem);
+  }
   DecodedImage img;
   std::string error;
   if (!oiio_read(path, options, &img, &error))

@@ -224,6 +224,52 @@ TEST(HostileScenes, ConvertNeverReplacesAnInput) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);  // nothing else written
 }
 
+TEST(HostileScenes, WritersKeepEveryFileInTheOutputsFolder) {
+  // Names from a hostile input: a mesh and a texture whose names lead out.
+  Scene s;
+  s.cameras.push_back(Camera{});
+  Texture t;
+  t.name = "../../../evil/tex";
+  t.width = t.height = 2;
+  t.channels = 3;
+  t.pixels.assign(12, 200);
+  s.textures.push_back(t);
+  Material m;
+  m.name = "../m";
+  m.diffuse_texture = 0;
+  s.materials.push_back(m);
+  Mesh mesh;
+  mesh.name = "/etc/../../up/mesh";
+  mesh.positions = {vec3(0.f), vec3(1.f, 0.f, 0.f), vec3(0.f, 1.f, 0.f)};
+  mesh.uvs = {vec2(0.f), vec2(1.f, 0.f), vec2(0.f, 1.f)};
+  mesh.indices = {0, 1, 2};
+  s.meshes.push_back(mesh);
+  Node shape;
+  shape.kind = Node::Kind::shape;
+  shape.name = "../../node";
+  shape.shape_kind = ShapeKind::mesh;
+  shape.shape = 0;
+  shape.material = 0;
+  s.nodes.push_back(shape);
+  Node root;
+  root.children = {0};
+  s.nodes.push_back(root);
+  s.root = 1;
+  const fs::path dir = test::temp_dir("hostile_names");
+  const fs::path out = dir / "deep" / "out";
+  fs::create_directories(out);
+  for (const char* name : {"o.txt", "o.obj", "o.gltf", "o.glb"}) {
+    const SaveResult r = save_scene(s, (out / name).string());
+    EXPECT_FALSE(r.files.empty()) << name;
+    for (const std::string& f : r.files) EXPECT_TRUE(lies_within_folder(f, out)) << name << " wrote " << f;
+  }
+  // Nothing appeared anywhere but in out/.
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) {
+      EXPECT_TRUE(lies_within_folder(e.path(), out)) << e.path();
+    }
+}
+
 TEST(Confine, UriSchemes) {
   EXPECT_TRUE(has_uri_scheme("http://x"));
   EXPECT_TRUE(has_uri_scheme("file:///etc/passwd"));

@@ -1,0 +1,56 @@
+#include "image/header_check.h"
+
+#include <cstring>
+
+namespace rayform {
+namespace {
+
+uint32_t le32(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+uint32_t le16(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8; }
+
+// OpenEXR: magic, version, then attributes "name\0type\0" int32 size, value;
+// an empty name ends the (first part's) header.
+std::string exr_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options) {
+  size_t at = 8;
+  while (at < size) {
+    auto text = [&](std::string* out) {  // a NUL-terminated string inside head
+      const void* end = std::memchr(head + at, 0, size - at);
+      if (!end) return false;
+      out->assign(reinterpret_cast<const char*>(head + at), static_cast<const uint8_t*>(end) - (head + at));
+      at += out->size() + 1;
+      return true;
+    };
+    std::string name, type;
+    if (!text(&name)) return "";  // the header goes on past what was read
+    if (name.empty()) return "";  // end of the header
+    if (!text(&type) || at + 4 > size) return "";
+    const uint64_t bytes = le32(head + at);
+    at += 4;
+    if (int32_t(bytes) < 0 || at + bytes > file_bytes)
+      return "EXR attribute '" + name + "' declares " + std::to_string(int32_t(bytes)) + " bytes, more than the " +
+             std::to_string(file_bytes) + " bytes of the file";
+    if (name == "dataWindow" && type == "box2i" && bytes == 16 && at + 16 <= size) {
+      const int64_t x0 = int32_t(le32(head + at)), y0 = int32_t(le32(head + at + 4)), x1 = int32_t(le32(head + at + 8)),
+                    y1 = int32_t(le32(head + at + 12));
+      const uint64_t w = x1 >= x0 ? uint64_t(x1 - x0 + 1) : 0, h = y1 >= y0 ? uint64_t(y1 - y0 + 1) : 0;
+      if (exceeds_texel_limit(w, h, options)) return texture_size_message(w, h, 16, options);
+    }
+    at += bytes;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string header_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options) {
+  if (size >= 8 && std::memcmp(head, "\x76\x2f\x31\x01", 4) == 0) return exr_problem(head, size, file_bytes, options);
+  if (size >= 10 && (std::memcmp(head, "GIF87a", 6) == 0 || std::memcmp(head, "GIF89a", 6) == 0)) {
+    const uint64_t w = le16(head + 6), h = le16(head + 8);  // the logical screen: giflib's canvas
+    if (exceeds_texel_limit(w, h, options)) return texture_size_message(w, h, 4, options);
+  }
+  return "";
+}
+
+}  // namespace rayform

@@ -1,0 +1,25 @@
+// Headers that OpenImageIO's readers trust too far, checked by us before the
+// file is handed to them: an OpenEXR attribute whose declared size runs past
+// the end of the file (OpenEXR allocates it first: a 54-byte file asked for
+// 1.9 GB), and the declared sizes of EXR images (dataWindow) and GIF canvases
+// (the logical screen, which giflib allocates at open) against the texel
+// limit. Other formats go to OpenImageIO unchecked here.
+#pragma once
+
+#include "image/image_decode.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace rayform {
+
+// What is wrong with the file whose first `size` bytes are `head` and whose
+// whole length is `file_bytes`; "" when nothing is found. A header longer than
+// `head` is checked as far as `head` goes. Messages as image_decode.h's:
+// "texture is WxH (...), more than the limit of N texels (...)", or what the
+// header claims, e.g. "EXR attribute 'capDate' declares 1862270977 bytes, more
+// than the 54 bytes of the file".
+std::string header_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options);
+
+}  // namespace rayform
