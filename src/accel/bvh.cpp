@@ -53,7 +53,13 @@ struct Builder {
       };
       std::vector<Bin> bins(nb);
       float lo = centroids.lo[axis], scale = nb / (centroids.hi[axis] - lo);
-      auto bin_of = [&](const BuildItem& it) { return std::min(nb - 1, int((it.centroid[axis] - lo) * scale)); };
+      // A centroid that is not finite (an instance whose bounds overflowed)
+      // goes to the first or last bin; a float outside int's range is not
+      // converted (undefined behaviour).
+      auto bin_of = [&](const BuildItem& it) {
+        const float f = (it.centroid[axis] - lo) * scale;
+        return f >= 0.f ? std::min(nb - 1, int(std::min(f, float(nb)))) : 0;
+      };
       for (uint32_t i = begin; i < end; ++i) {
         Bin& b = bins[bin_of(items[i])];
         b.b.expand(items[i].bounds);

@@ -20,15 +20,9 @@ void set_error(char* error, size_t size, const std::string& message) {
 }
 }  // namespace
 
-extern "C" {
-
-__attribute__((visibility("default"))) int rayform_oiio_can_write(const char* path) {
-  return OIIO::ImageOutput::create(path) ? 1 : 0;
-}
-
-__attribute__((visibility("default"))) int rayform_oiio_read(const char* path, unsigned long long max_texels,
-                                                             int* width, int* height, int* channels, int* bits,
-                                                             void** pixels, char* error, size_t error_size) {
+namespace {
+int read_with_oiio(const char* path, unsigned long long max_texels, int* width, int* height, int* channels, int* bits,
+                   void** pixels, char* error, size_t error_size) {
   // Alpha as the file stores it: OpenImageIO would premultiply unassociated
   // alpha (TGA, TIFF, ...) by default; textures take it as stb_image gave it.
   OIIO::ImageSpec config;
@@ -64,6 +58,28 @@ __attribute__((visibility("default"))) int rayform_oiio_read(const char* path, u
   }
   *pixels = data;
   return 1;
+}
+}  // namespace
+
+extern "C" {
+
+__attribute__((visibility("default"))) int rayform_oiio_can_write(const char* path) {
+  return OIIO::ImageOutput::create(path) ? 1 : 0;
+}
+
+// No exception crosses this C boundary: OpenImageIO's readers throw on some
+// broken files (a GIF whose frame asks for a vector longer than max_size).
+__attribute__((visibility("default"))) int rayform_oiio_read(const char* path, unsigned long long max_texels,
+                                                             int* width, int* height, int* channels, int* bits,
+                                                             void** pixels, char* error, size_t error_size) {
+  try {
+    return read_with_oiio(path, max_texels, width, height, channels, bits, pixels, error, error_size);
+  } catch (const std::exception& e) {
+    set_error(error, error_size, std::string("OpenImageIO failed: ") + e.what());
+  } catch (...) {
+    set_error(error, error_size, "OpenImageIO failed");
+  }
+  return 0;
 }
 
 __attribute__((visibility("default"))) void rayform_oiio_free(void* pixels) { std::free(pixels); }
