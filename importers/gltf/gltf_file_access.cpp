@@ -53,6 +53,28 @@ bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chu
 
 }  // namespace
 
+std::string glb_container_problem(const std::vector<unsigned char>& bytes) {
+  auto u32 = [&](size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return uint64_t(v);
+  };
+  if (bytes.size() < 12) return "the file is shorter than the 12-byte GLB header";
+  const uint64_t total = u32(8);
+  if (total > bytes.size())
+    return "the header says the file has " + std::to_string(total) + " bytes, it has " + std::to_string(bytes.size());
+  int k = 0;
+  for (uint64_t at = 12; at < total; ++k) {
+    if (at + 8 > total) return "chunk " + std::to_string(k) + " has no room for its 8-byte header";
+    const uint64_t length = u32(size_t(at));
+    if (at + 8 + length > total)
+      return "chunk " + std::to_string(k) + " of " + std::to_string(length) + " bytes runs past the file's " +
+             std::to_string(total) + " bytes";
+    at += 8 + length;
+  }
+  return "";
+}
+
 std::string json_too_deep(const std::vector<unsigned char>& bytes, bool glb, uint64_t max_depth) {
   JsonChunk chunk;
   if (!find_json(bytes, glb, &chunk)) return "";  // tinygltf reports the broken container

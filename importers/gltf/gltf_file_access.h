@@ -33,6 +33,11 @@ inline constexpr const char* draco_indices_key = "rayform_indices";
 // Returns false (bytes untouched) when the file needed neither.
 bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb);
 
+// What is wrong with a .glb's container, "" when nothing: the header's total
+// length must not exceed the file, and every chunk must lie inside that length
+// (tinygltf 2.7 trusts both and reads past the end of its buffer).
+std::string glb_container_problem(const std::vector<unsigned char>& bytes);
+
 // Where the JSON of a .gltf (or a .glb's JSON chunk) first nests arrays and
 // objects deeper than `max_depth`: "line L, column C" (of the JSON text), or
 // "" when it never does. Checked before tinygltf parses the file: its parser

@@ -147,6 +147,9 @@ class GltfSceneBuilder {
         fail("not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
     }
 
+    if (glb)
+      if (const std::string problem = glb_container_problem(bytes); !problem.empty())
+        fail("not a valid binary glTF (GLB): " + problem);
     if (const std::string at = json_too_deep(bytes, glb, options_.limits.json_depth); !at.empty())
       fail(std::string(glb ? "JSON chunk, " : "") + at + ": arrays and objects nest more than " +
            std::to_string(options_.limits.json_depth) + " levels deep (raise the limit with --limit json-depth=N)");

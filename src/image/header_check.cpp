@@ -46,7 +46,8 @@ std::string exr_problem(const uint8_t* head, size_t size, uint64_t file_bytes, c
 
 std::string header_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options) {
   if (size >= 8 && std::memcmp(head, "\x76\x2f\x31\x01", 4) == 0) return exr_problem(head, size, file_bytes, options);
-  if (size >= 10 && (std::memcmp(head, "GIF87a", 6) == 0 || std::memcmp(head, "GIF89a", 6) == 0)) {
+  // giflib takes any "GIF" signature (the version is not checked), whatever the extension.
+  if (size >= 10 && std::memcmp(head, "GIF", 3) == 0) {
     const uint64_t w = le16(head + 6), h = le16(head + 8);  // the logical screen: giflib's canvas
     if (exceeds_texel_limit(w, h, options)) return texture_size_message(w, h, 4, options);
   }
