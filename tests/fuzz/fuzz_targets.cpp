@@ -124,6 +124,7 @@ FuzzOutcome load_and_prepare(const std::string& file) {
   try {
     LoadOptions lo;
     lo.access.confine = true;  // files from strangers: rayform's --confine
+    lo.limits.texture_texels = fuzz_texture_texels;
     LoadedScene loaded = load_scene((workspace().scene_folder() / file).string(), lo);
     o.outside = outside_uses(loaded.scene);
     (void)scene_stats(loaded.scene, lo.limits.instances);
@@ -184,7 +185,8 @@ FuzzOutcome fuzz_image(const uint8_t* data, size_t size, const FuzzLimits& limit
   workspace().put(name.c_str(), &bytes);
   const std::string path = (workspace().scene_folder() / name).string();
   try {
-    (void)to_float_image(read_image_file(path));  // as textures are read: samples as stored, then floats
+    (void)to_float_image(read_image_file(
+        path, DecodeOptions{fuzz_texture_texels}));  // as textures are read: samples as stored, then floats
     o.ok = true;
   } catch (const Error& e) {
     o.message = e.what();

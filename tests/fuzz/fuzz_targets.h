@@ -20,6 +20,12 @@ struct FuzzLimits {
   size_t max_input_bytes = size_t(1) << 20;  // larger inputs are skipped (not read)
 };
 
+// The texture limit the entries decode with: 2^22 texels (2048 x 2048), below
+// rayform's default of 2^28, so that an image the default rightly admits
+// (up to 1 GiB decoded) does not pass the fuzzer's and the replay's memory
+// bounds. What is tested is that every header is checked, not the default.
+inline constexpr uint64_t fuzz_texture_texels = uint64_t(1) << 22;
+
 struct FuzzOutcome {
   bool skipped = false;  // over FuzzLimits::max_input_bytes
   bool ok = false;       // false: a clean error (rayform::Error, or a usage error for the CLI)
