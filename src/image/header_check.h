@@ -1,10 +1,11 @@
 // Headers that OpenImageIO's readers trust too far, checked by us before the
 // file is handed to them: an OpenEXR attribute whose declared size runs past
 // the end of the file (OpenEXR allocates it first: a 54-byte file asked for
-// 1.9 GB), and the declared sizes of EXR images (dataWindow), GIF canvases
-// (the logical screen, which giflib allocates at open) and BMPs our own reader
-// does not take (OpenImageIO's reader allocates the rows first) against the
-// texel limit. Other formats go to OpenImageIO unchecked here.
+// 1.9 GB), the declared sizes of EXR images (dataWindow) and GIF canvases
+// (the logical screen, which giflib allocates at open) against the texel
+// limit; and every BMP our own reader does not take is refused (OpenImageIO
+// 2.4's BMP reader allocated a 69-byte file's rows first and crashed on
+// another). Other formats go to OpenImageIO unchecked here.
 #pragma once
 
 #include "image/image_decode.h"
