@@ -7,9 +7,9 @@
 // packages): PNG (libpng), JPEG (libjpeg-turbo), WebP (libwebp), and the
 // course's uncompressed 24/32-bit BMP through our own bounds-checked reader
 // (bmp_reader.cpp; OpenImageIO would cost every course render ~0.4 s of
-// start-up). Everything else (TGA, HDR, RLE or paletted BMP, GIF, PNM, PSD,
-// EXR, TIFF, ...) goes to OpenImageIO's readers (oiio_plugin.h), which get the
-// same limit. stb_image, not meant for untrusted files, decodes nothing.
+// start-up; other BMPs are refused, header_check.h). Everything else (TGA,
+// HDR, GIF, PNM, PSD, EXR, TIFF, ...) goes to OpenImageIO's readers
+// (oiio_plugin.h), which get the same limit. stb_image, not meant for untrusted files, decodes nothing.
 #pragma once
 
 #include "scene/limits.h"
