@@ -20,26 +20,18 @@ std::string get(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-TEST(ReplaceFile, ReplacesAnExistingFile) {
-  const fs::path dir = test::temp_dir("replace_existing");
-  put(dir / "out.bmp", "old content, longer than the new");
-  put(dir / ".out.tmp", "new");
-  std::error_code ec;
-  replace_file((dir / ".out.tmp").string(), (dir / "out.bmp").string(), ec);
-  EXPECT_FALSE(ec) << ec.message();
-  EXPECT_EQ(get(dir / "out.bmp"), "new");
-  EXPECT_FALSE(fs::exists(dir / ".out.tmp"));
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
-}
-
-TEST(ReplaceFile, CreatesAMissingFile) {
-  const fs::path dir = test::temp_dir("replace_missing");
-  put(dir / ".out.tmp", "new");
-  std::error_code ec;
-  replace_file((dir / ".out.tmp").string(), (dir / "out.bmp").string(), ec);
-  EXPECT_FALSE(ec) << ec.message();
-  EXPECT_EQ(get(dir / "out.bmp"), "new");
-  EXPECT_FALSE(fs::exists(dir / ".out.tmp"));
+TEST(ReplaceFile, ReplacesAnExistingFileOrCreatesAMissingOne) {
+  for (const bool existing : {true, false}) {
+    const fs::path dir = test::temp_dir(existing ? "replace_existing" : "replace_missing");
+    if (existing) put(dir / "out.bmp", "old content, longer than the new");
+    put(dir / ".out.tmp", "new");
+    std::error_code ec;
+    replace_file((dir / ".out.tmp").string(), (dir / "out.bmp").string(), ec);
+    EXPECT_FALSE(ec) << ec.message();
+    EXPECT_EQ(get(dir / "out.bmp"), "new") << existing;
+    EXPECT_FALSE(fs::exists(dir / ".out.tmp")) << existing;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << existing;
+  }
 }
 
 TEST(ReplaceFile, AFolderInTheWayIsAnErrorAndKeepsBoth) {
