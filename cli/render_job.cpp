@@ -58,7 +58,8 @@ void check_output_path(const std::string& path, const char* what) {
     throw Error(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
                 "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
   fs::path dir = fs::path(path).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir))
+  std::error_code ec;
+  if (!dir.empty() && !fs::is_directory(dir, ec))
     throw Error(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
 }
 

@@ -180,8 +180,7 @@ class CourseParser {
     static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
     for (int i = 0; i < 6; ++i) {
       fs::path f = dir / (std::string(faces[i]) + ".png");
-      if (!fs::exists(f))
-        tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
+      if (!exists(f)) tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
       check_access(t, "cube map face", (fs::path(t.text) / f.filename()).string(), f);
       Texture tex;
       tex.name = faces[i];
@@ -235,18 +234,25 @@ class CourseParser {
     return index;
   }
 
+  // Whether a file is there; a name the system cannot look up (too long, say)
+  // is not.
+  static bool exists(const fs::path& p) {
+    std::error_code ec;
+    return fs::exists(p, ec);
+  }
+
   // Path relative to the scene file's folder, then (not confined) to the
   // working directory.
   fs::path resolve(const Token& t, const std::string& name, const char* what) {
     fs::path p(name);
     if (p.is_absolute()) {
-      if (fs::exists(p)) return p;
+      if (exists(p)) return p;
     } else {
       fs::path beside = fs::path(path_).parent_path() / p;
-      if (fs::exists(beside)) return beside;
-      if (!access_.confine && fs::exists(p)) return p;
+      if (exists(beside)) return beside;
+      if (!access_.confine && exists(p)) return p;
     }
-    tokens_.fail(t, std::string("cannot find ") + what + " '" + name + "' (looked beside the scene file" +
+    tokens_.fail(t, std::string("cannot find ") + what + " '" + shown(name) + "' (looked beside the scene file" +
                         (access_.confine ? ")" : " and in the working directory)"));
   }
 
@@ -420,7 +426,9 @@ class CourseParser {
   int load_mesh(const Token& file) {
     fs::path p = resolve(file, file.text, "mesh file");
     check_access(file, "mesh file", file.text, p);
-    std::string key = fs::weakly_canonical(p).string();
+    std::error_code ec;
+    std::string key = fs::weakly_canonical(p, ec).string();
+    if (ec) key = p.string();
     auto it = mesh_cache_.find(key);
     if (it != mesh_cache_.end()) return it->second;
     Mesh m;

@@ -72,13 +72,19 @@ std::string CourseTokenizer::line_col(const Token& t) const {
 }
 std::string CourseTokenizer::where(const Token& t) const { return path_ + ":" + line_col(t); }
 
+std::string shown(std::string_view text) {
+  constexpr size_t most = 64;
+  if (text.size() <= most) return std::string(text);
+  return std::string(text.substr(0, most)) + "...";
+}
+
 void CourseTokenizer::fail(const Token& t, const std::string& message) const { throw Error(where(t) + ": " + message); }
 
 void CourseTokenizer::expect(std::string_view word, std::string_view context) {
   std::string what = "'";  // (built by appends: GCC 12 warns falsely on "'" + string)
   what.append(word).append("' in ").append(context);
   Token t = next_or_fail(what);
-  if (t.text != word) fail(t, "expected " + what + ", found '" + t.text + "'");
+  if (t.text != word) fail(t, "expected " + what + ", found '" + shown(t.text) + "'");
 }
 
 float CourseTokenizer::number() {
@@ -87,9 +93,9 @@ float CourseTokenizer::number() {
   char* end = nullptr;
   errno = 0;
   double v = std::strtod(s, &end);
-  if (end == s || *end != '\0') fail(t, "expected a number, found '" + t.text + "'");
+  if (end == s || *end != '\0') fail(t, "expected a number, found '" + shown(t.text) + "'");
   if (!std::isfinite(v) || errno == ERANGE || std::abs(v) > 3.4e38)
-    fail(t, "expected a finite number, found '" + t.text + "'");
+    fail(t, "expected a finite number, found '" + shown(t.text) + "'");
   return float(v);
 }
 
@@ -99,8 +105,8 @@ int CourseTokenizer::count() {
   char* end = nullptr;
   errno = 0;
   long v = std::strtol(s, &end, 10);
-  if (end == s || *end != '\0' || errno == ERANGE) fail(t, "expected a whole number, found '" + t.text + "'");
-  if (v < 0 || v > 100000000) fail(t, "expected a count between 0 and 100000000, found '" + t.text + "'");
+  if (end == s || *end != '\0' || errno == ERANGE) fail(t, "expected a whole number, found '" + shown(t.text) + "'");
+  if (v < 0 || v > 100000000) fail(t, "expected a count between 0 and 100000000, found '" + shown(t.text) + "'");
   return int(v);
 }
 

@@ -47,6 +47,9 @@ class CourseTokenizer {
   int end_line_ = 1, end_column_ = 1;
 };
 
+// A token's text as an error message shows it: at most 64 bytes, then "...".
+std::string shown(std::string_view text);
+
 // Whether the text uses a keyword only the 2019 dialect has (falloff, bump).
 bool course_text_uses_2019_keywords(std::string_view text);
 

@@ -25,7 +25,9 @@ constexpr size_t header_bytes = 64 * 1024;
 
 DecodedImage read_image_file(const std::string& path, const DecodeOptions& options) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + (fs::exists(path) ? ": cannot open image file" : ": cannot read image: no such file"));
+  std::error_code ec;
+  if (!in)
+    throw Error(path + (fs::exists(path, ec) ? ": cannot open image file" : ": cannot read image: no such file"));
   std::vector<uint8_t> bytes(sniff_bytes);
   in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
   bytes.resize(size_t(in.gcount()));

@@ -41,7 +41,7 @@ const Plugin& plugin() {
 #endif
     std::string tried;
     for (const fs::path& c : candidates) {
-      if (!fs::exists(c)) {
+      if (!fs::exists(c, ec)) {
         tried.append(" ").append(c.string());
         continue;
       }

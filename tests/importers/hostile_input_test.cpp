@@ -165,6 +165,19 @@ TEST(HostileScenes, DevicesAreNotReadEvenWithoutConfine) {
       << error_of([&] { load_scene((dir / "zero.txt").string()); });
 }
 
+// Found by the fuzzer: a name longer than the system's limit (ENAMETOOLONG)
+// made std::filesystem throw past the readers' errors.
+TEST(HostileScenes, NameTooLongForTheSystemIsNotFoundWithItsPlace) {
+  const fs::path dir = test::temp_dir("hostile_long_name");
+  const std::string name = "mesh" + std::string(5000, 'x') + ".obj";
+  put(dir / "long.txt", course_scene(name));
+  const std::string message = error_of([&] { load_scene((dir / "long.txt").string()); });
+  EXPECT_NE(message.find("long.txt:5:62: cannot find mesh file 'mesh" + std::string(60, 'x') + "...' (looked beside"),
+            std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), 400u);
+}
+
 TEST(Confine, RefusesEveryWayOutAndAdmitsTheFolder) {
   const fs::path root = test::temp_dir("confine");
   const fs::path in = root / "in", out = root / "outside";
