@@ -15,14 +15,13 @@
 namespace rayform {
 
 namespace detail {
+// Refuses (rayform::Error) a visit of node `index` at `depth` (the root is 1)
+// that is too deep, out of range, or on the path to itself.
+void check_visit(const Scene& scene, int index, int depth, const std::vector<uint8_t>& on_path);
+
 template <class Fn>
 void walk_nodes(const Scene& scene, int index, const mat4& parent, int depth, std::vector<uint8_t>& on_path, Fn& fn) {
-  if (depth > max_node_depth)
-    throw Error("scene: the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) +
-                " levels)");
-  if (index < 0 || index >= int(scene.nodes.size()))
-    throw Error("scene: node index " + std::to_string(index) + " out of range");
-  if (on_path[index]) throw Error("scene: node " + std::to_string(index) + " is its own ancestor (cycle)");
+  check_visit(scene, index, depth, on_path);
   on_path[index] = 1;
   const Node& n = scene.nodes[index];
   mat4 m = n.kind == Node::Kind::group ? parent : parent * n.local;
