@@ -29,6 +29,11 @@ inline Ray to_object_space(const Instance& inst, const Ray& r) {
   return o;
 }
 
+// The hit record of a mesh instance's hit at t.
+inline Hit mesh_instance_hit(uint32_t instance, float t, const MeshHit& mh) {
+  return {t, instance, mh.triangle, mh.b1, mh.b2};
+}
+
 inline bool intersect_instance(const PreparedScene& p, uint32_t index, const Ray& world_ray, float& tmax, Hit* hit) {
   const Instance& inst = p.instances[index];
   Ray r = to_object_space(inst, world_ray);
@@ -60,7 +65,7 @@ inline bool intersect_instance(const PreparedScene& p, uint32_t index, const Ray
     case ShapeKind::mesh: {
       MeshHit mh;
       if (!intersect_mesh(p.meshes[inst.shape], r, tmax, &mh)) return false;
-      *hit = {tmax, index, mh.triangle, mh.b1, mh.b2};
+      *hit = mesh_instance_hit(index, tmax, mh);
       return true;
     }
   }
@@ -114,8 +119,7 @@ inline int intersect_sole_mesh8(const PreparedScene& p, int instance, const Ray*
   MeshHit mesh_hits[8];
   const int found = intersect_mesh8(p.meshes[size_t(inst.shape)], object_rays, active, tmax, mesh_hits);
   for (int i = 0; i < 8; ++i)
-    if ((found >> i) & 1)
-      hits[i] = {tmax[i], uint32_t(instance), mesh_hits[i].triangle, mesh_hits[i].b1, mesh_hits[i].b2};
+    if ((found >> i) & 1) hits[i] = mesh_instance_hit(uint32_t(instance), tmax[i], mesh_hits[i]);
   return found;
 }
 
