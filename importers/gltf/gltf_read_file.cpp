@@ -40,13 +40,12 @@ void GltfSceneBuilder::load() {
       fail("not a glTF file: neither a JSON object nor a binary glTF (GLB) container");
   }
 
-  if (glb)
-    if (const std::string problem = glb_container_problem(bytes); !problem.empty())
-      fail("not a valid binary glTF (GLB): " + problem);
-  if (const std::string at = json_too_deep(bytes, glb, options_.limits.json_depth); !at.empty())
+  GltfContainer container = read_gltf_container(bytes, glb);
+  if (!container.problem.empty()) fail("not a valid binary glTF (GLB): " + container.problem);
+  if (const std::string at = json_too_deep(bytes, container, options_.limits.json_depth); !at.empty())
     fail(std::string(glb ? "JSON chunk, " : "") + at + ": arrays and objects nest more than " +
          std::to_string(options_.limits.json_depth) + " levels deep (raise the limit with --limit json-depth=N)");
-  adapt_json_for_tinygltf(bytes, glb);
+  adapt_json_for_tinygltf(bytes, glb, container);
 
   GltfFileAccess fsctx;
   fsctx.base = fs::path(path_).parent_path().string();
@@ -67,7 +66,7 @@ void GltfSceneBuilder::load() {
           : loader.LoadASCIIFromString(&model_, &err, &warn_text, reinterpret_cast<const char*>(bytes.data()),
                                        unsigned(bytes.size()), fsctx.base);
   if (!fsctx.problem.empty()) fail(fsctx.problem);
-  if (!ok) diagnose_load_failure(bytes, glb, err);
+  if (!ok) diagnose_load_failure(bytes, container, glb, err);
   for (const std::string& w : images.warnings) warn(w);
   ktx2_images_.insert(images.ktx2_images.begin(), images.ktx2_images.end());
   std::istringstream wl(warn_text);
@@ -87,8 +86,8 @@ void GltfSceneBuilder::load() {
 }
 
 // Turns tinygltf's message into one that names the element at fault.
-void GltfSceneBuilder::diagnose_load_failure(const std::vector<unsigned char>& bytes, bool glb,
-                                             const std::string& err) {
+void GltfSceneBuilder::diagnose_load_failure(const std::vector<unsigned char>& bytes, const GltfContainer& container,
+                                             bool glb, const std::string& err) {
   std::string e = gltf_one_line(err);
   if (glb && (e.find("Invalid glTF binary") != std::string::npos || e.find("Too short") != std::string::npos ||
               e.find("Chunk") != std::string::npos || e.find("Invalid magic") != std::string::npos))
@@ -97,15 +96,10 @@ void GltfSceneBuilder::diagnose_load_failure(const std::vector<unsigned char>& b
   if (e.find("File not found") != std::string::npos || e.find("File size mismatch") != std::string::npos ||
       e.find("File is empty") != std::string::npos) {
     try {
-      std::string json_text;
-      if (glb) {
-        uint32_t len = 0;
-        if (bytes.size() >= 20) std::memcpy(&len, bytes.data() + 12, 4);
-        if (bytes.size() >= 20 && len <= bytes.size() - 20)
-          json_text.assign(bytes.begin() + 20, bytes.begin() + 20 + len);
-      } else {
-        json_text.assign(bytes.begin(), bytes.end());
-      }
+      std::string json_text;  // empty without a JSON chunk (tinygltf refuses such a .glb first)
+      if (container.json)
+        json_text.assign(bytes.begin() + long(container.json->offset),
+                         bytes.begin() + long(container.json->offset + container.json->length));
       nlohmann::json j = nlohmann::json::parse(json_text);
       if (j.contains("buffers") && j["buffers"].is_array()) {
         fs::path dir = fs::path(path_).parent_path();

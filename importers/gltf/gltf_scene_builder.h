@@ -10,6 +10,7 @@
 #pragma once
 
 #include "gltf/gltf_accessors.h"
+#include "gltf/gltf_file_access.h"
 #include "gltf/gltf_messages.h"
 #include "gltf/gltf_reader.h"
 #include "scene/error.h"
@@ -60,7 +61,8 @@ class GltfSceneBuilder {
 
   // ---- gltf_read_file.cpp -------------------------------------------------------
   void load();
-  [[noreturn]] void diagnose_load_failure(const std::vector<unsigned char>& bytes, bool glb, const std::string& err);
+  [[noreturn]] void diagnose_load_failure(const std::vector<unsigned char>& bytes, const GltfContainer& container,
+                                          bool glb, const std::string& err);
 
   // ---- gltf_read_nodes.cpp ------------------------------------------------------
   std::vector<std::pair<int, std::string>> root_nodes();
