@@ -1,7 +1,8 @@
 // rayform's own extras in glTF files: what glTF cannot say (analytic spheres
 // and planes, Phong values, the course camera, the background, ...) travels
-// under the key "rayform" of an object's extras, written by gltf_writer.cpp.
-// The reader calls apply_gltf_rayform_extras after building its Scene.
+// under the key "rayform" of an object's extras, written by the writer
+// (gltf_writer.h). The reader calls apply_gltf_rayform_extras after building
+// its Scene.
 #pragma once
 
 #include "scene/scene.h"

@@ -27,57 +27,56 @@ std::string percent_decode(const std::string& s) {
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
-namespace {
+// ---- the container and JSON that tinygltf refuses ------------------------------
 
-// ---- JSON that tinygltf refuses -----------------------------------------------
-
-// The glTF JSON of `bytes` (a .gltf, or a .glb's JSON chunk), where it lies.
-struct JsonChunk {
-  size_t offset = 0, length = 0;
-};
-bool find_json(const std::vector<unsigned char>& bytes, bool glb, JsonChunk* chunk) {
+GltfContainer read_gltf_container(const std::vector<unsigned char>& bytes, bool glb) {
+  GltfContainer out;
   if (!glb) {
-    *chunk = JsonChunk{0, bytes.size()};
-    return true;
+    out.json = GltfJsonChunk{0, bytes.size()};
+    return out;
   }
-  constexpr size_t header = 12, chunk_header = 8;
-  if (bytes.size() < header + chunk_header) return false;
-  uint32_t length = 0, type = 0;
-  std::memcpy(&length, bytes.data() + header, 4);
-  std::memcpy(&type, bytes.data() + header + 4, 4);
-  constexpr uint32_t json_type = 0x4E4F534A;  // "JSON"
-  if (type != json_type || length > bytes.size() - header - chunk_header) return false;
-  *chunk = JsonChunk{header + chunk_header, length};
-  return true;
-}
-
-}  // namespace
-
-std::string glb_container_problem(const std::vector<unsigned char>& bytes) {
   auto u32 = [&](size_t at) {
     uint32_t v = 0;
     std::memcpy(&v, bytes.data() + at, 4);
     return uint64_t(v);
   };
-  if (bytes.size() < 12) return "the file is shorter than the 12-byte GLB header";
-  const uint64_t total = u32(8);
-  if (total > bytes.size())
-    return "the header says the file has " + std::to_string(total) + " bytes, it has " + std::to_string(bytes.size());
-  int k = 0;
-  for (uint64_t at = 12; at < total; ++k) {
-    if (at + 8 > total) return "chunk " + std::to_string(k) + " has no room for its 8-byte header";
-    const uint64_t length = u32(size_t(at));
-    if (at + 8 + length > total)
-      return "chunk " + std::to_string(k) + " of " + std::to_string(length) + " bytes runs past the file's " +
-             std::to_string(total) + " bytes";
-    at += 8 + length;
+  constexpr size_t header = 12, chunk_header = 8;
+  constexpr uint64_t json_type = 0x4E4F534A;  // "JSON"
+  // The JSON chunk comes first, inside the file (what the header's total
+  // length says of it is the container's problem, below).
+  if (bytes.size() >= header + chunk_header && u32(header + 4) == json_type &&
+      u32(header) <= bytes.size() - header - chunk_header)
+    out.json = GltfJsonChunk{header + chunk_header, size_t(u32(header))};
+  if (bytes.size() < header) {
+    out.problem = "the file is shorter than the 12-byte GLB header";
+    return out;
   }
-  return "";
+  const uint64_t total = u32(8);
+  if (total > bytes.size()) {
+    out.problem =
+        "the header says the file has " + std::to_string(total) + " bytes, it has " + std::to_string(bytes.size());
+    return out;
+  }
+  int k = 0;
+  for (uint64_t at = header; at < total; ++k) {
+    if (at + chunk_header > total) {
+      out.problem = "chunk " + std::to_string(k) + " has no room for its 8-byte header";
+      return out;
+    }
+    const uint64_t length = u32(size_t(at));
+    if (at + chunk_header + length > total) {
+      out.problem = "chunk " + std::to_string(k) + " of " + std::to_string(length) + " bytes runs past the file's " +
+                    std::to_string(total) + " bytes";
+      return out;
+    }
+    at += chunk_header + length;
+  }
+  return out;
 }
 
-std::string json_too_deep(const std::vector<unsigned char>& bytes, bool glb, uint64_t max_depth) {
-  JsonChunk chunk;
-  if (!find_json(bytes, glb, &chunk)) return "";  // tinygltf reports the broken container
+std::string json_too_deep(const std::vector<unsigned char>& bytes, const GltfContainer& container, uint64_t max_depth) {
+  if (!container.json) return "";  // tinygltf reports the broken container
+  const GltfJsonChunk& chunk = *container.json;
   uint64_t depth = 0, line = 1;
   size_t line_start = chunk.offset;
   bool in_string = false;
@@ -144,9 +143,9 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
 
 }  // namespace
 
-bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb) {
-  JsonChunk chunk;
-  if (!find_json(bytes, glb, &chunk)) return false;
+bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb, GltfContainer& container) {
+  if (!container.json) return false;
+  const GltfJsonChunk chunk = *container.json;
   const char* text = reinterpret_cast<const char*>(bytes.data() + chunk.offset);
   const std::string_view view(text, chunk.length);
   if (view.find("EXT_meshopt_compression") == std::string_view::npos &&
@@ -188,6 +187,7 @@ bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb) {
   std::string json = j.dump();
   if (!glb) {
     bytes.assign(json.begin(), json.end());
+    container.json = GltfJsonChunk{0, bytes.size()};
     return true;
   }
   while (json.size() % 4 != 0) json += ' ';
@@ -205,6 +205,7 @@ bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb) {
   const uint32_t total = uint32_t(out.size());
   std::memcpy(out.data() + 8, &total, 4);
   bytes = std::move(out);
+  container.json = GltfJsonChunk{20, json.size()};
   return true;
 }
 

@@ -7,7 +7,9 @@
 
 #include <tiny_gltf.h>
 
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,24 @@ bool is_data_uri(const std::string& uri);
 // accessor (inside the primitive's KHR_draco_mesh_compression object).
 inline constexpr const char* draco_indices_key = "rayform_indices";
 
+// Where the JSON text lies in a glTF file's bytes: all of a .gltf, a .glb's JSON chunk.
+struct GltfJsonChunk {
+  size_t offset = 0, length = 0;
+};
+
+// A glTF file's bytes taken apart once, before tinygltf sees them.
+struct GltfContainer {
+  // Where the JSON lies; none for a .glb whose first chunk is not a JSON chunk
+  // that fits in the file (tinygltf reports the broken container).
+  std::optional<GltfJsonChunk> json;
+  // What is wrong with a .glb's container, "" when nothing (and for a .gltf):
+  // the header's total length must not exceed the file, and every chunk must
+  // lie inside that length (tinygltf 2.7 trusts both and reads past the end of
+  // its buffer).
+  std::string problem;
+};
+GltfContainer read_gltf_container(const std::vector<unsigned char>& bytes, bool glb);
+
 // Two kinds of valid files that tinygltf 2.7 refuses, adapted before it sees them:
 // - a buffer that EXT_meshopt_compression marks as a fallback may have no data
 //   (no uri in a .gltf; in a .glb, no part of the BIN chunk): such buffers get
@@ -30,19 +50,16 @@ inline constexpr const char* draco_indices_key = "rayform_indices";
 // - a KHR_draco_mesh_compression primitive's index accessor has no bufferView:
 //   the primitive's "indices" moves into its extension object (under
 //   draco_indices_key), where the reader's decode_draco_primitive finds it.
-// Returns false (bytes untouched) when the file needed neither.
-bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb);
-
-// What is wrong with a .glb's container, "" when nothing: the header's total
-// length must not exceed the file, and every chunk must lie inside that length
-// (tinygltf 2.7 trusts both and reads past the end of its buffer).
-std::string glb_container_problem(const std::vector<unsigned char>& bytes);
+// `container` is read_gltf_container's of `bytes`; its json follows the JSON
+// where adapted. Returns false (bytes untouched) when the file needed neither.
+bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb, GltfContainer& container);
 
 // Where the JSON of a .gltf (or a .glb's JSON chunk) first nests arrays and
 // objects deeper than `max_depth`: "line L, column C" (of the JSON text), or
-// "" when it never does. Checked before tinygltf parses the file: its parser
-// recurses once per level (20 000 nested arrays overflow the stack).
-std::string json_too_deep(const std::vector<unsigned char>& bytes, bool glb, uint64_t max_depth);
+// "" when it never does (or the container has no JSON). Checked before
+// tinygltf parses the file: its parser recurses once per level (20 000 nested
+// arrays overflow the stack).
+std::string json_too_deep(const std::vector<unsigned char>& bytes, const GltfContainer& container, uint64_t max_depth);
 
 // File access for tinygltf: only names joined to the model's folder (tinygltf
 // would also look in the working directory), each checked by

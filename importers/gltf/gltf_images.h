@@ -5,9 +5,10 @@
 // the Scene holds 8-bit texels), under the texture-size limit of
 // GltfImageContext::decode. KTX2 / Basis Universal (KHR_texture_basisu) has
 // no decoder here: such images are left empty, and the reader falls back to
-// the texture's PNG/JPEG source or refuses the texture (gltf_reader.cpp:
-// texture). An image that cannot be decoded, or is larger than the limit, is
-// a warning, not an error: the asset still loads, untextured there.
+// the texture's PNG/JPEG source or refuses the texture
+// (gltf_read_materials.cpp: texture_source). An image that cannot be decoded,
+// or is larger than the limit, is a warning, not an error: the asset still
+// loads, untextured there.
 #pragma once
 
 #include "image/image_decode.h"

@@ -664,7 +664,7 @@ TEST(SceneWriter, StaleExtrasAreIgnoredWithAWarning) {
 
 // ---- the material formula ----------------------------------------------------------------------
 
-// The reader's conversion (gltf_reader.cpp, pbr_to_phong), as documented there.
+// The reader's conversion (gltf_material.h, pbr_to_phong), as documented there.
 void reader_pbr_to_phong(vec3 base, float metallic, float roughness, vec3* ks, float* n) {
   vec3 f0 = glm::mix(vec3(0.04f), base, metallic);
   float smooth = 1.f - roughness;

@@ -1,0 +1,85 @@
+// The glTF writer's output (GltfBuilder, gltf_builder.h): the model written
+// by tinygltf into a temporary folder (.gltf with its .bin, or .glb), each
+// file checked for its whole length and synced, then all renamed into place.
+#include "gltf/gltf_builder.h"
+#include "image/checked_write.h"
+#include "scene/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace rayform::gltf_detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Keeps every image's URI as set here (tinygltf would otherwise re-encode).
+bool keep_image_uri(const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* out_uri,
+                    void*) {
+  *out_uri = image->uri;
+  return true;
+}
+
+// The length a .glb's header declares (0 when the header is missing).
+uint64_t glb_length(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  unsigned char head[12] = {};
+  if (!in.read(reinterpret_cast<char*>(head), sizeof head)) return 0;
+  return uint64_t(head[8]) | uint64_t(head[9]) << 8 | uint64_t(head[10]) << 16 | uint64_t(head[11]) << 24;
+}
+
+}  // namespace
+
+// A file tinygltf wrote: `bytes` long (when not 0), complete JSON (when
+// `json`), then synced; else the write failed (a full disk, most likely).
+void GltfBuilder::check_written(const std::string& file, uint64_t bytes, bool json) const {
+  std::error_code ec;
+  const uint64_t size = fs::file_size(file, ec);
+  bool complete = !ec && size > 0 && (bytes == 0 || size == bytes);
+  if (complete && json) {
+    std::ifstream in(file, std::ios::binary);
+    complete = nlohmann::json::accept(in);
+  }
+  std::string error = complete ? "" : "the file was cut short (disk full?)";
+  if (complete && !sync_file(file, &error)) complete = false;
+  if (!complete) throw Error(path_ + ": cannot write (" + error + ")");
+}
+
+SaveResult GltfBuilder::save() {
+  if (!buffer_.empty()) {
+    tinygltf::Buffer b;
+    b.data = std::move(buffer_);
+    if (!options_.binary && !options_.embed) b.uri = stem_ + ".bin";
+    model_.buffers.push_back(std::move(b));
+  }
+  const std::string dir = out_.temp_dir();
+  const std::string ext = options_.binary ? ".glb" : ".gltf";
+  const std::string temp_main = (fs::path(dir) / (stem_ + ext)).string();
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(&keep_image_uri, nullptr);
+  if (!writer.WriteGltfSceneToFile(&model_, temp_main, /*embedImages*/ false, /*embedBuffers*/ options_.embed,
+                                   /*prettyPrint*/ true, /*writeBinary*/ options_.binary))
+    throw Error(path_ + ": cannot write (tinygltf failed to write '" + temp_main + "')");
+  std::error_code ec;
+  if (!fs::is_regular_file(temp_main, ec)) throw Error(path_ + ": cannot write (tinygltf wrote nothing)");
+  // tinygltf does not check its writes: a full disk leaves short files. Each
+  // is checked for its whole length, then synced (image/checked_write.h).
+  check_written(temp_main, options_.binary ? glb_length(temp_main) : 0, !options_.binary);
+  if (!model_.buffers.empty() && !model_.buffers[0].uri.empty()) {
+    std::string bin = (fs::path(dir) / model_.buffers[0].uri).string();
+    if (!fs::is_regular_file(bin, ec)) throw Error(path_ + ": cannot write the buffer file " + model_.buffers[0].uri);
+    check_written(bin, model_.buffers[0].data.size(), false);
+    out_.add_written(out_.beside(model_.buffers[0].uri), bin);
+  }
+  out_.add_written(path_, temp_main);
+  SaveResult r;
+  r.files = out_.commit();
+  for (const tinygltf::Mesh& m : model_.meshes)  // as readers count: each mesh once, every primitive
+    for (const tinygltf::Primitive& p : m.primitives)
+      r.stored_triangles += model_.accessors[size_t(p.indices)].count / 3;
+  return r;
+}
+
+}  // namespace rayform::gltf_detail

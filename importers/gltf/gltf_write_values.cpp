@@ -1,0 +1,31 @@
+// The glTF writer's JSON values (gltf_builder.h): floats written as the
+// double of their shortest decimal text, vectors of them, and rayform's own
+// extras under the key "rayform".
+#include "gltf/gltf_builder.h"
+#include "text_format.h"
+
+#include <cstdlib>
+
+namespace rayform::gltf_detail {
+
+double nice(float f) {
+  double d = std::strtod(format_float(f).c_str(), nullptr);
+  return float(d) == f ? d : double(f);
+}
+
+Value num(float f) { return Value(nice(f)); }
+Value vec_value(vec3 v) { return Value(Value::Array{num(v.x), num(v.y), num(v.z)}); }
+
+std::vector<double> nice_vector(std::initializer_list<float> fs) {
+  std::vector<double> out;
+  for (float f : fs) out.push_back(nice(f));
+  return out;
+}
+
+Value rayform_extras(Value::Object obj) {
+  Value::Object root;
+  root["rayform"] = Value(std::move(obj));
+  return Value(std::move(root));
+}
+
+}  // namespace rayform::gltf_detail
