@@ -1,6 +1,9 @@
 #include "image/header_check.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
 
 namespace rayform {
 namespace {
@@ -57,6 +60,22 @@ std::string header_problem(const uint8_t* head, size_t size, uint64_t file_bytes
     if (exceeds_texel_limit(w, h, options)) return texture_size_message(w, h, 4, options);
   }
   return "";
+}
+
+const char* const oiio_read_formats = "TGA, HDR, EXR, TIFF, GIF, PNM, PSD";
+
+const char* oiio_reader_for(const uint8_t* head, size_t size, const std::string& path) {
+  auto starts = [&](const char* magic, size_t n) { return size >= n && std::memcmp(head, magic, n) == 0; };
+  if (starts("\x76\x2f\x31\x01", 4)) return "openexr";
+  if (starts("#?", 2)) return "hdr";  // #?RADIANCE, #?RGBE
+  if (starts("II*\0", 4) || starts("MM\0*", 4) || starts("II+\0", 4) || starts("MM\0+", 4)) return "tiff";
+  if (starts("GIF", 3)) return "gif";
+  if (size >= 2 && head[0] == 'P' && head[1] != '\0' && std::strchr("123456fF", head[1])) return "pnm";
+  if (starts("8BPS", 4)) return "psd";
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".tga" || ext == ".targa") return "targa";
+  return nullptr;
 }
 
 }  // namespace rayform

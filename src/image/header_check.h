@@ -5,7 +5,10 @@
 // (the logical screen, which giflib allocates at open) against the texel
 // limit; and every BMP our own reader does not take is refused (OpenImageIO
 // 2.4's BMP reader allocated a 69-byte file's rows first and crashed on
-// another). Other formats go to OpenImageIO unchecked here.
+// another). And which of OpenImageIO's readers may read a file at all: one
+// chosen from the file's signature, never OpenImageIO's own guess (given a
+// file it cannot place, OpenImageIO tries every reader it has: its RLA reader
+// aborted on a fuzzed ".tif").
 #pragma once
 
 #include "image/image_decode.h"
@@ -23,5 +26,14 @@ namespace rayform {
 // header claims, e.g. "EXR attribute 'capDate' declares 1862270977 bytes, more
 // than the 54 bytes of the file".
 std::string header_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options);
+
+// The OpenImageIO reader ("openexr", "hdr", "tiff", "gif", "pnm", "psd",
+// "targa") for the file at `path` whose first `size` bytes are `head`, from its
+// signature (TGA, which has none, from a .tga or .targa name); nullptr for
+// anything else, which rayform does not read.
+const char* oiio_reader_for(const uint8_t* head, size_t size, const std::string& path);
+
+// The formats oiio_reader_for admits, for messages: "TGA, HDR, EXR, TIFF, GIF, PNM, PSD".
+extern const char* const oiio_read_formats;
 
 }  // namespace rayform

@@ -37,8 +37,10 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
     if (in.bad()) throw Error(path + ": cannot read image file");
     return decode_image_memory(bytes.data(), bytes.size(), path, options);
   }
-  // Every other format (tga, hdr, exr, tif, RLE bmp, ...): OpenImageIO, once
-  // the headers it trusts too far are checked (header_check.h).
+  // Every other format rayform reads (tga, hdr, exr, tif, gif, pnm, psd):
+  // OpenImageIO's reader for it, once the headers it trusts too far are
+  // checked (header_check.h).
+  const char* format = nullptr;
   {
     if (bytes.size() == sniff_bytes) {  // more to read
       bytes.resize(header_bytes);
@@ -50,10 +52,14 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
     if (std::string problem = header_problem(bytes.data(), bytes.size(), ec ? bytes.size() : file_bytes, options);
         !problem.empty())
       throw Error(path + ": " + (problem.rfind("texture is", 0) == 0 ? "" : "cannot decode image: ") + problem);
+    format = oiio_reader_for(bytes.data(), bytes.size(), path);
+    if (!format)
+      throw Error(path + ": cannot decode image: not a format rayform reads (PNG, JPEG, WebP, BMP, " +
+                  oiio_read_formats + ")");
   }
   DecodedImage img;
   std::string error;
-  if (!oiio_read(path, options, &img, &error))
+  if (!oiio_read(path, format, options, &img, &error))
     throw Error(path + ": cannot decode image" + (error.empty() ? "" : ": " + error));
   return img;
 }

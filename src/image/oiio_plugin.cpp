@@ -51,7 +51,7 @@ const Plugin& plugin() {
         continue;
       }
       p.can_write = reinterpret_cast<rayform_oiio_can_write_fn>(dlsym(h, "rayform_oiio_can_write"));
-      p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read"));
+      p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read_as"));
       p.free = reinterpret_cast<rayform_oiio_free_fn>(dlsym(h, "rayform_oiio_free"));
       p.write = reinterpret_cast<rayform_oiio_write_fn>(dlsym(h, "rayform_oiio_write"));
       if (p.can_write && p.read && p.free && p.write) return;
@@ -71,12 +71,13 @@ const Plugin& plugin() {
 
 bool oiio_can_write(const std::string& path) { return plugin().can_write(path.c_str()) != 0; }
 
-bool oiio_read(const std::string& path, const DecodeOptions& options, DecodedImage* image, std::string* error) {
+bool oiio_read(const std::string& path, const char* format, const DecodeOptions& options, DecodedImage* image,
+               std::string* error) {
   const Plugin& p = plugin();
   int w = 0, h = 0, c = 0, bits = 0;
   void* data = nullptr;
   char buf[512] = {0};
-  const int r = p.read(path.c_str(), options.max_texels, &w, &h, &c, &bits, &data, buf, sizeof buf);
+  const int r = p.read(path.c_str(), format, options.max_texels, &w, &h, &c, &bits, &data, buf, sizeof buf);
   if (r == 2) check_texture_size(path, uint64_t(w), uint64_t(h), bits == 8 ? 4 : 16, options);  // throws
   if (r != 1) {
     *error = buf;

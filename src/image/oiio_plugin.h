@@ -15,10 +15,12 @@ namespace rayform {
 
 // Each throws rayform::Error when the plugin cannot be loaded.
 bool oiio_can_write(const std::string& path);
-// Reads any format OpenImageIO knows, 8-bit files as 8-bit samples, others as
-// float; throws the "texture is WxH ..." error of image_decode.h when the
-// header declares more than options.max_texels texels (nothing is decoded).
-bool oiio_read(const std::string& path, const DecodeOptions& options, DecodedImage* image, std::string* error);
+// Reads `path` with OpenImageIO's reader `format` (header_check.h's
+// oiio_reader_for), 8-bit files as 8-bit samples, others as float; throws the
+// "texture is WxH ..." error of image_decode.h when the header declares more
+// than options.max_texels texels (nothing is decoded).
+bool oiio_read(const std::string& path, const char* format, const DecodeOptions& options, DecodedImage* image,
+               std::string* error);
 // 8-bit formats store floor(clamp(v) * 255); float formats the values.
 bool oiio_write(const std::string& file_for_format, const std::string& path, const Image& image, std::string* error);
 

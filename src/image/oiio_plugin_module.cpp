@@ -21,15 +21,22 @@ void set_error(char* error, size_t size, const std::string& message) {
 }  // namespace
 
 namespace {
-int read_with_oiio(const char* path, unsigned long long max_texels, int* width, int* height, int* channels, int* bits,
-                   void** pixels, char* error, size_t error_size) {
+int read_with_oiio(const char* path, const char* format, unsigned long long max_texels, int* width, int* height,
+                   int* channels, int* bits, void** pixels, char* error, size_t error_size) {
   // Alpha as the file stores it: OpenImageIO would premultiply unassociated
   // alpha (TGA, TIFF, ...) by default; textures take it as stb_image gave it.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  // The reader named, not ImageInput::open's: that one tries every reader
+  // OpenImageIO has on a file its extension's reader does not take.
+  auto in = OIIO::ImageInput::create(format, false, &config);
   if (!in) {
     set_error(error, error_size, OIIO::geterror());
+    return 0;
+  }
+  OIIO::ImageSpec opened;
+  if (!in->open(path, opened, config)) {
+    set_error(error, error_size, in->geterror());
     return 0;
   }
   const OIIO::ImageSpec& spec = in->spec();
@@ -69,11 +76,12 @@ __attribute__((visibility("default"))) int rayform_oiio_can_write(const char* pa
 
 // No exception crosses this C boundary: OpenImageIO's readers throw on some
 // broken files (a GIF whose frame asks for a vector longer than max_size).
-__attribute__((visibility("default"))) int rayform_oiio_read(const char* path, unsigned long long max_texels,
-                                                             int* width, int* height, int* channels, int* bits,
-                                                             void** pixels, char* error, size_t error_size) {
+__attribute__((visibility("default"))) int rayform_oiio_read_as(const char* path, const char* format,
+                                                                unsigned long long max_texels, int* width, int* height,
+                                                                int* channels, int* bits, void** pixels, char* error,
+                                                                size_t error_size) {
   try {
-    return read_with_oiio(path, max_texels, width, height, channels, bits, pixels, error, error_size);
+    return read_with_oiio(path, format, max_texels, width, height, channels, bits, pixels, error, error_size);
   } catch (const std::exception& e) {
     set_error(error, error_size, std::string("OpenImageIO failed: ") + e.what());
   } catch (...) {

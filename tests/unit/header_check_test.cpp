@@ -1,6 +1,7 @@
 // header_check.h: the headers checked before OpenImageIO opens a file (an EXR
 // attribute longer than the file, EXR data windows and GIF screens beyond the
-// texel limit); ordinary headers pass.
+// texel limit); ordinary headers pass; and which OpenImageIO reader a file
+// gets (oiio_reader_for: from its signature, TGA from its name, else none).
 #include "image/header_check.h"
 
 #include <gtest/gtest.h>
@@ -64,6 +65,28 @@ TEST(HeaderCheck, GifScreenBeyondTheTexelLimit) {
   EXPECT_EQ(problem(gif), "");
   const std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
   EXPECT_EQ(problem(png), "");  // not a format checked here
+}
+
+TEST(OiioReaderFor, ChosenFromTheSignatureNotTheName) {
+  auto reader = [](const std::string& head, const std::string& name) {
+    const char* r = oiio_reader_for(reinterpret_cast<const uint8_t*>(head.data()), head.size(), name);
+    return std::string(r ? r : "none");
+  };
+  EXPECT_EQ(reader(std::string("\x76\x2f\x31\x01\x02\0\0\0", 8), "a.png"), "openexr");
+  EXPECT_EQ(reader("#?RADIANCE\n", "a.tif"), "hdr");
+  EXPECT_EQ(reader(std::string("II*\0\x08\0\0\0", 8), "a.hdr"), "tiff");
+  EXPECT_EQ(reader(std::string("MM\0*\0\0\0\x08", 8), "a"), "tiff");
+  EXPECT_EQ(reader("GIF89a", "a.jpg"), "gif");
+  EXPECT_EQ(reader("P6\n2 2\n255\n", "a.ppm"), "pnm");
+  EXPECT_EQ(reader("8BPS", "a.psd"), "psd");
+  // TGA has no signature: its name decides, whatever the bytes.
+  EXPECT_EQ(reader(std::string("\0\0\x02\0", 4), "dir.x/A.TGA"), "targa");
+  EXPECT_EQ(reader(std::string("\0\0\x02\0", 4), "a.targa"), "targa");
+  // The fuzzed ".tif" that OpenImageIO handed to its RLA reader (abort).
+  EXPECT_EQ(reader(std::string("\0\0UIDA\0\0", 8), "a.tif"), "none");
+  EXPECT_EQ(reader("", "a.exr"), "none");
+  EXPECT_EQ(reader("P", "a.ppm"), "none");
+  EXPECT_EQ(reader(std::string("P\0", 2), "a.ppm"), "none");
 }
 
 }  // namespace
