@@ -13,8 +13,65 @@ uint32_t le32(const uint8_t* p) {
 }
 uint32_t le16(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8; }
 
+// The bytes OpenEXR reads for a value of `type` starting at head[at],
+// whatever size the attribute declares: fixed for most types, found by
+// parsing for channel lists (names until an empty one, 16 bytes after each)
+// and previews (width, height, then RGBA8 pixels); -1 for types read by their
+// declared size (string, stringvector, floatvector, unknown types), -2 when
+// the value runs past what was read.
+int64_t exr_value_bytes(const std::string& type, const uint8_t* head, size_t size, size_t at) {
+  static const struct {
+    const char* type;
+    int bytes;
+  } fixed[] = {{"box2i", 16},
+               {"box2f", 16},
+               {"chromaticities", 32},
+               {"compression", 1},
+               {"deepImageState", 1},
+               {"double", 8},
+               {"envmap", 1},
+               {"float", 4},
+               {"int", 4},
+               {"keycode", 28},
+               {"lineOrder", 1},
+               {"m33f", 36},
+               {"m33d", 72},
+               {"m44f", 64},
+               {"m44d", 128},
+               {"rational", 8},
+               {"tiledesc", 9},
+               {"timecode", 8},
+               {"v2i", 8},
+               {"v2f", 8},
+               {"v2d", 16},
+               {"v3i", 12},
+               {"v3f", 12},
+               {"v3d", 24}};
+  for (const auto& f : fixed)
+    if (type == f.type) return f.bytes;
+  if (type == "chlist") {
+    size_t p = at;
+    while (true) {
+      const void* end = p < size ? std::memchr(head + p, 0, size - p) : nullptr;
+      if (!end) return -2;
+      const size_t name_bytes = size_t(static_cast<const uint8_t*>(end) - (head + p));
+      p += name_bytes + 1;
+      if (name_bytes == 0) return int64_t(p - at);
+      p += 16;  // pixel type, pLinear, reserved, x and y sampling
+    }
+  }
+  if (type == "preview") {
+    if (at + 8 > size) return -2;
+    return 8 + 4 * int64_t(le32(head + at)) * int64_t(le32(head + at + 4));
+  }
+  return -1;
+}
+
 // OpenEXR: magic, version, then attributes "name\0type\0" int32 size, value;
-// an empty name ends the (first part's) header.
+// an empty name ends the (first part's) header. OpenEXR reads some values by
+// their type, not their declared size, and goes on from where the value
+// ended: an attribute whose value takes other than the bytes it declares is
+// refused, so that the walk here stays where OpenEXR's is.
 std::string exr_problem(const uint8_t* head, size_t size, uint64_t file_bytes, const DecodeOptions& options) {
   size_t at = 8;
   while (at < size) {
@@ -34,6 +91,11 @@ std::string exr_problem(const uint8_t* head, size_t size, uint64_t file_bytes, c
     if (int32_t(bytes) < 0 || at + bytes > file_bytes)
       return "EXR attribute '" + name + "' declares " + std::to_string(int32_t(bytes)) + " bytes, more than the " +
              std::to_string(file_bytes) + " bytes of the file";
+    const int64_t value_bytes = exr_value_bytes(type, head, size, at);
+    if (value_bytes == -2) return "";  // the header goes on past what was read
+    if (value_bytes >= 0 && uint64_t(value_bytes) != bytes)
+      return "EXR attribute '" + name + "' of type " + type + " declares " + std::to_string(bytes) +
+             " bytes but its value takes " + std::to_string(value_bytes);
     if (name == "dataWindow" && type == "box2i" && bytes == 16 && at + 16 <= size) {
       const int64_t x0 = int32_t(le32(head + at)), y0 = int32_t(le32(head + at + 4)), x1 = int32_t(le32(head + at + 8)),
                     y1 = int32_t(le32(head + at + 12));

@@ -58,6 +58,33 @@ TEST(HeaderCheck, ExrDataWindowBeyondTheTexelLimit) {
             "texture-texels=N)");
 }
 
+// OpenEXR reads a channel list by its content and a box2i as 16 bytes,
+// whatever size they declare, and goes on from there; a fuzzed file used a
+// chlist declaring fewer bytes than it holds so that the walk here ended
+// early while OpenEXR went on to a string of 1.9 GB.
+TEST(HeaderCheck, ExrValueOtherThanItsDeclaredSizeIsRefused) {
+  auto with_channels = [](int32_t declared) {
+    std::vector<uint8_t> b = {0x76, 0x2f, 0x31, 0x01};
+    put32(b, 2);
+    put_text(b, "channels");
+    put_text(b, "chlist");
+    put32(b, declared);
+    for (const char* c : {"B", "G", "R"}) {
+      put_text(b, c);
+      for (int32_t v : {1, 0, 1, 1}) put32(b, v);  // half, pLinear + reserved, sampling 1 1
+    }
+    b.push_back(0);  // end of the list: 3 x 18 + 1 = 55 bytes
+    b.push_back(0);  // end of header
+    return b;
+  };
+  EXPECT_EQ(problem(with_channels(55)), "");
+  EXPECT_EQ(problem(with_channels(37)),
+            "EXR attribute 'channels' of type chlist declares 37 bytes but its value takes 55");
+  std::vector<uint8_t> box = exr(7, 7, 0, 0);
+  box[8 + 11 + 6] = 12;  // dataWindow's declared size
+  EXPECT_EQ(problem(box), "EXR attribute 'dataWindow' of type box2i declares 12 bytes but its value takes 16");
+}
+
 TEST(HeaderCheck, GifScreenBeyondTheTexelLimit) {
   std::vector<uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 0x07, 0x38, 0x42, 0x50, 0, 0, 0};
   EXPECT_NE(problem(gif).find("texture is 14343x20546"), std::string::npos) << problem(gif);
