@@ -1,7 +1,11 @@
 #include "obj/obj_reader.h"
 
+#include "obj/obj_parallel_parse.h"
+#include "obj/text_stream_buffer.h"
+
 #include "scene/error.h"
 
+#include <tbb/global_control.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -22,6 +26,9 @@ namespace {
 // Grey of the material given to faces without a (known) material: light
 // enough to read, dark enough that a head-on light does not clip it.
 constexpr float default_grey = 0.8f;
+
+// Smaller files are parsed in one piece: threads do not pay there.
+constexpr size_t min_parallel_bytes = size_t(1) << 20;
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -218,16 +225,6 @@ struct VertexKeyHash {
   }
 };
 
-// A read-only stream buffer over text kept elsewhere (tinyobjloader reads a
-// std::istream; std::istringstream would copy the whole file).
-class TextStreamBuffer : public std::streambuf {
- public:
-  explicit TextStreamBuffer(std::string_view text) {
-    char* first = const_cast<char*>(text.data());  // never written: get area only
-    setg(first, first, first + text.size());
-  }
-};
-
 class ObjSceneBuilder {
  public:
   ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
@@ -237,17 +234,10 @@ class ObjSceneBuilder {
     text_ = read_text_file(path_);
     load_material_libraries();
 
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> materials;
-    std::string warn_text, err;
-    TextStreamBuffer buffer(text_);
-    std::istream in(&buffer);
-    PreloadedMaterials reader(lib_);
-    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err, &in, &reader, /*triangulate*/ true,
-                               /*default_vcols_fallback*/ false);
-    if (!ok) fail_from_tinyobj(err);
-    handle_tinyobj_warnings(warn_text);
+    ObjParse parsed = parse();
+    const tinyobj::attrib_t& attrib = parsed.attrib;
+    const std::vector<tinyobj::shape_t>& shapes = parsed.shapes;
+    handle_tinyobj_warnings(parsed.warn);
 
     const size_t nv = attrib.vertices.size() / 3;
     const size_t nt = attrib.texcoords.size() / 2;
@@ -322,6 +312,30 @@ class ObjSceneBuilder {
   }
 
  private:
+  // The text through tinyobjloader: in chunks at once where that gives the
+  // same (see obj_parallel_parse.h) and pays, else in one piece.
+  ObjParse parse() {
+    ObjParse parsed;
+    MaterialReaderFactory readers = [&] { return std::make_unique<PreloadedMaterials>(lib_); };
+    size_t chunk = options_.parse_chunk_bytes;
+    if (chunk == 0) {
+      const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+      chunk = threads > 1 && text_.size() >= min_parallel_bytes ? text_.size() / (4 * threads) + 1 : 0;
+    }
+    if (chunk != 0 && chunk != ObjReadOptions::serial && parse_obj_chunked(text_, readers, chunk, &parsed))
+      return parsed;
+    parsed = ObjParse{};
+    std::vector<tinyobj::material_t> materials;
+    std::string err;
+    TextStreamBuffer buffer(text_);
+    std::istream in(&buffer);
+    std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+    bool ok = tinyobj::LoadObj(&parsed.attrib, &parsed.shapes, &materials, &parsed.warn, &err, &in, reader.get(),
+                               /*triangulate*/ true, /*default_vcols_fallback*/ false);
+    if (!ok) fail_from_tinyobj(err);
+    return parsed;
+  }
+
   void warn(std::string w) {
     if (warnings_ && seen_warnings_.insert(w).second) warnings_->push_back(std::move(w));
   }
