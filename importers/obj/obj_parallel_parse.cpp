@@ -33,13 +33,15 @@ bool is_space(char c) { return c == ' ' || c == '\t'; }
 bool plain_triangle(std::string_view s) {
   if (s.find('-') != std::string_view::npos) return false;
   int corners = 0;
-  size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    if (i == s.size()) break;
-    ++corners;
-    for (size_t digits = 0; i < s.size() && !is_space(s[i]); ++i) {
-      digits = s[i] >= '0' && s[i] <= '9' ? digits + 1 : 0;
+  const size_t n = s.size();
+  for (size_t i = 0;; ++corners) {
+    while (i < n && is_space(s[i])) ++i;
+    if (i == n) break;
+    const size_t start = i;
+    while (i < n && !is_space(s[i])) ++i;
+    if (i - start < 10) continue;
+    for (size_t k = start, digits = 0; k < i; ++k) {
+      digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
       if (digits > 9) return false;
     }
   }
@@ -63,7 +65,9 @@ ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
     p = nl ? line_end + 1 : end;
 
     std::string_view t = line.text;
-    t.remove_prefix(std::min(t.find_first_not_of(" \t"), t.size()));
+    size_t lead = 0;
+    while (lead < t.size() && is_space(t[lead])) ++lead;
+    t.remove_prefix(lead);
     auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
     if (t.empty() || t[0] == '#') continue;
     if (t[0] == 'v' && is_space(at(1))) continue;

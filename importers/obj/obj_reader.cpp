@@ -5,7 +5,9 @@
 
 #include "scene/error.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -511,6 +513,32 @@ class ObjSceneBuilder {
 
   // ---- geometry ----------------------------------------------------------
 
+  // A triangle's unit normal weighted by its angle at each corner (where the
+  // triangle and the corner's edges have a length): what each corner adds to
+  // its position's smooth normal.
+  static void angle_weighted_normals(const std::vector<tinyobj::index_t>& idx, size_t start, bool triangle,
+                                     const tinyobj::attrib_t& a, vec3* weighted, uint8_t* contributes) {
+    contributes[0] = contributes[1] = contributes[2] = 0;
+    if (!triangle) return;
+    vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = size_t(idx[start + k].vertex_index);
+      p[k] = vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]);
+    }
+    vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+    float len = glm::length(n);
+    if (!(len > 0.f) || !std::isfinite(len)) return;
+    n /= len;
+    for (int k = 0; k < 3; ++k) {
+      vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+      float l1 = glm::length(e1), l2 = glm::length(e2);
+      if (!(l1 > 0.f && l2 > 0.f)) continue;
+      float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
+      weighted[k] = std::acos(c) * n;
+      contributes[k] = 1;
+    }
+  }
+
   int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
     const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
     const size_t faces = s.mesh.num_face_vertices.size();
@@ -554,25 +582,22 @@ class ObjSceneBuilder {
     std::vector<vec3> smooth;  // per position; zero where no face contributes
     if (generate && !options_.flat) {
       smooth.assign(position_count, vec3(0.f));
-      for (size_t f = 0; f < faces; ++f) {
-        if (s.mesh.num_face_vertices[f] != 3) continue;
-        int v[3];
-        vec3 p[3];
-        for (int k = 0; k < 3; ++k) {
-          v[k] = idx[face_start[f] + k].vertex_index;
-          p[k] = pos(v[k]);
-        }
-        vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-        float len = glm::length(n);
-        if (!(len > 0.f) || !std::isfinite(len)) continue;
-        n /= len;
-        for (int k = 0; k < 3; ++k) {
-          vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
-          float l1 = glm::length(e1), l2 = glm::length(e2);
-          if (!(l1 > 0.f && l2 > 0.f)) continue;
-          float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
-          smooth[v[k]] += std::acos(c) * n;
-        }
+      // The weighted normals of a block of faces at once, then summed per
+      // position in face order (the same float sums as one loop would make).
+      constexpr size_t block = size_t(1) << 16;
+      std::vector<vec3> weighted(3 * std::min(faces, block));
+      std::vector<uint8_t> contributes(weighted.size());
+      for (size_t first = 0; first < faces; first += block) {
+        const size_t last = std::min(faces, first + block);
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1024), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t f = r.begin(); f < r.end(); ++f)
+            angle_weighted_normals(idx, face_start[f], s.mesh.num_face_vertices[f] == 3, a, &weighted[3 * (f - first)],
+                                   &contributes[3 * (f - first)]);
+        });
+        for (size_t f = first; f < last; ++f)
+          for (int k = 0; k < 3; ++k)
+            if (contributes[3 * (f - first) + k])
+              smooth[idx[face_start[f] + k].vertex_index] += weighted[3 * (f - first) + k];
       }
     }
 
