@@ -1,7 +1,13 @@
 #include "obj/obj_reader.h"
 
+#include "obj/obj_parallel_parse.h"
+#include "obj/text_stream_buffer.h"
+
 #include "scene/error.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -22,6 +28,9 @@ namespace {
 // Grey of the material given to faces without a (known) material: light
 // enough to read, dark enough that a head-on light does not clip it.
 constexpr float default_grey = 0.8f;
+
+// Smaller files are parsed in one piece: threads do not pay there.
+constexpr size_t min_parallel_bytes = size_t(1) << 20;
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -218,16 +227,6 @@ struct VertexKeyHash {
   }
 };
 
-// A read-only stream buffer over text kept elsewhere (tinyobjloader reads a
-// std::istream; std::istringstream would copy the whole file).
-class TextStreamBuffer : public std::streambuf {
- public:
-  explicit TextStreamBuffer(std::string_view text) {
-    char* first = const_cast<char*>(text.data());  // never written: get area only
-    setg(first, first, first + text.size());
-  }
-};
-
 class ObjSceneBuilder {
  public:
   ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
@@ -237,17 +236,10 @@ class ObjSceneBuilder {
     text_ = read_text_file(path_);
     load_material_libraries();
 
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> materials;
-    std::string warn_text, err;
-    TextStreamBuffer buffer(text_);
-    std::istream in(&buffer);
-    PreloadedMaterials reader(lib_);
-    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err, &in, &reader, /*triangulate*/ true,
-                               /*default_vcols_fallback*/ false);
-    if (!ok) fail_from_tinyobj(err);
-    handle_tinyobj_warnings(warn_text);
+    ObjParse parsed = parse();
+    const tinyobj::attrib_t& attrib = parsed.attrib;
+    const std::vector<tinyobj::shape_t>& shapes = parsed.shapes;
+    handle_tinyobj_warnings(parsed.warn);
 
     const size_t nv = attrib.vertices.size() / 3;
     const size_t nt = attrib.texcoords.size() / 2;
@@ -322,6 +314,30 @@ class ObjSceneBuilder {
   }
 
  private:
+  // The text through tinyobjloader: in chunks at once where that gives the
+  // same (see obj_parallel_parse.h) and pays, else in one piece.
+  ObjParse parse() {
+    ObjParse parsed;
+    MaterialReaderFactory readers = [&] { return std::make_unique<PreloadedMaterials>(lib_); };
+    size_t chunk = options_.parse_chunk_bytes;
+    if (chunk == 0) {
+      const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+      chunk = threads > 1 && text_.size() >= min_parallel_bytes ? text_.size() / (4 * threads) + 1 : 0;
+    }
+    if (chunk != 0 && chunk != ObjReadOptions::serial && parse_obj_chunked(text_, readers, chunk, &parsed))
+      return parsed;
+    parsed = ObjParse{};
+    std::vector<tinyobj::material_t> materials;
+    std::string err;
+    TextStreamBuffer buffer(text_);
+    std::istream in(&buffer);
+    std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+    bool ok = tinyobj::LoadObj(&parsed.attrib, &parsed.shapes, &materials, &parsed.warn, &err, &in, reader.get(),
+                               /*triangulate*/ true, /*default_vcols_fallback*/ false);
+    if (!ok) fail_from_tinyobj(err);
+    return parsed;
+  }
+
   void warn(std::string w) {
     if (warnings_ && seen_warnings_.insert(w).second) warnings_->push_back(std::move(w));
   }
@@ -497,6 +513,32 @@ class ObjSceneBuilder {
 
   // ---- geometry ----------------------------------------------------------
 
+  // A triangle's unit normal weighted by its angle at each corner (where the
+  // triangle and the corner's edges have a length): what each corner adds to
+  // its position's smooth normal.
+  static void angle_weighted_normals(const std::vector<tinyobj::index_t>& idx, size_t start, bool triangle,
+                                     const tinyobj::attrib_t& a, vec3* weighted, uint8_t* contributes) {
+    contributes[0] = contributes[1] = contributes[2] = 0;
+    if (!triangle) return;
+    vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = size_t(idx[start + k].vertex_index);
+      p[k] = vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]);
+    }
+    vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+    float len = glm::length(n);
+    if (!(len > 0.f) || !std::isfinite(len)) return;
+    n /= len;
+    for (int k = 0; k < 3; ++k) {
+      vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+      float l1 = glm::length(e1), l2 = glm::length(e2);
+      if (!(l1 > 0.f && l2 > 0.f)) continue;
+      float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
+      weighted[k] = std::acos(c) * n;
+      contributes[k] = 1;
+    }
+  }
+
   int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
     const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
     const size_t faces = s.mesh.num_face_vertices.size();
@@ -540,25 +582,22 @@ class ObjSceneBuilder {
     std::vector<vec3> smooth;  // per position; zero where no face contributes
     if (generate && !options_.flat) {
       smooth.assign(position_count, vec3(0.f));
-      for (size_t f = 0; f < faces; ++f) {
-        if (s.mesh.num_face_vertices[f] != 3) continue;
-        int v[3];
-        vec3 p[3];
-        for (int k = 0; k < 3; ++k) {
-          v[k] = idx[face_start[f] + k].vertex_index;
-          p[k] = pos(v[k]);
-        }
-        vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-        float len = glm::length(n);
-        if (!(len > 0.f) || !std::isfinite(len)) continue;
-        n /= len;
-        for (int k = 0; k < 3; ++k) {
-          vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
-          float l1 = glm::length(e1), l2 = glm::length(e2);
-          if (!(l1 > 0.f && l2 > 0.f)) continue;
-          float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
-          smooth[v[k]] += std::acos(c) * n;
-        }
+      // The weighted normals of a block of faces at once, then summed per
+      // position in face order (the same float sums as one loop would make).
+      constexpr size_t block = size_t(1) << 16;
+      std::vector<vec3> weighted(3 * std::min(faces, block));
+      std::vector<uint8_t> contributes(weighted.size());
+      for (size_t first = 0; first < faces; first += block) {
+        const size_t last = std::min(faces, first + block);
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1024), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t f = r.begin(); f < r.end(); ++f)
+            angle_weighted_normals(idx, face_start[f], s.mesh.num_face_vertices[f] == 3, a, &weighted[3 * (f - first)],
+                                   &contributes[3 * (f - first)]);
+        });
+        for (size_t f = first; f < last; ++f)
+          for (int k = 0; k < 3; ++k)
+            if (contributes[3 * (f - first) + k])
+              smooth[idx[face_start[f] + k].vertex_index] += weighted[3 * (f - first) + k];
       }
     }
 

@@ -29,6 +29,7 @@
 #include "referenced_files.h"
 #include "scene/scene.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,11 @@ namespace rayform {
 struct ObjReadOptions {
   bool flat = false;    // normals missing from the file: faceted instead of smooth
   FileAccess access{};  // .mtl files and textures the file names
+  // How the text is parsed: 0 chooses (in chunks at once for large files when
+  // more than one thread may run); `serial` in one piece; any other number
+  // forces chunks of about that many bytes (tests: the result is the same).
+  static constexpr size_t serial = ~size_t(0);
+  size_t parse_chunk_bytes = 0;
 };
 
 // Reads an OBJ file (and the .mtl files it names). Warnings, if wanted, are

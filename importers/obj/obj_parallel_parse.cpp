@@ -1,0 +1,238 @@
+#include "obj/obj_parallel_parse.h"
+
+#include "obj/text_stream_buffer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstring>
+#include <istream>
+#include <sstream>
+
+namespace rayform {
+namespace {
+
+// A line of the text (without its line end) and where it starts.
+struct Line {
+  std::string_view text;
+  size_t at = 0;
+  bool empty() const { return text.empty(); }
+};
+
+// What the scan of one chunk found.
+struct ChunkScan {
+  bool supported = true;
+  Line first_mtllib, last_usemtl, last_group, last_smoothing;
+  std::vector<size_t> section_faces{0};  // faces before the chunk's first g/o line, then after each
+};
+
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// A face line (after "f "): true when it has three corners, no '-' and no
+// number of more than 9 digits (atoi could wrap it to a negative index).
+bool plain_triangle(std::string_view s) {
+  if (s.find('-') != std::string_view::npos) return false;
+  int corners = 0;
+  const size_t n = s.size();
+  for (size_t i = 0;; ++corners) {
+    while (i < n && is_space(s[i])) ++i;
+    if (i == n) break;
+    const size_t start = i;
+    while (i < n && !is_space(s[i])) ++i;
+    if (i - start < 10) continue;
+    for (size_t k = start, digits = 0; k < i; ++k) {
+      digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
+      if (digits > 9) return false;
+    }
+  }
+  return corners == 3;
+}
+
+// Sorts each line of [begin, end) by the tests LoadObj makes, in its order.
+ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
+  ChunkScan scan;
+  const std::string_view chunk = text.substr(begin, end - begin);
+  if (chunk.find('\0') != std::string_view::npos) scan.supported = false;
+  for (size_t r = chunk.find('\r'); scan.supported && r != std::string_view::npos; r = chunk.find('\r', r + 1))
+    if (r + 1 == chunk.size() || chunk[r + 1] != '\n') scan.supported = false;  // a lone '\r' ends a line too
+  size_t p = begin;
+  while (scan.supported && p < end) {
+    const char* nl = static_cast<const char*>(std::memchr(text.data() + p, '\n', end - p));
+    const size_t line_end = nl ? size_t(nl - text.data()) : end;
+    size_t e = line_end;
+    if (e > p && text[e - 1] == '\r') --e;
+    const Line line{text.substr(p, e - p), p};
+    p = nl ? line_end + 1 : end;
+
+    std::string_view t = line.text;
+    size_t lead = 0;
+    while (lead < t.size() && is_space(t[lead])) ++lead;
+    t.remove_prefix(lead);
+    auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
+    if (t.empty() || t[0] == '#') continue;
+    if (t[0] == 'v' && is_space(at(1))) continue;
+    if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) continue;
+    if ((t[0] == 'v' && at(1) == 'w' && is_space(at(2))) || ((t[0] == 'l' || t[0] == 'p') && is_space(at(1)))) {
+      scan.supported = false;  // skin weights, lines, points
+    } else if (t[0] == 'f' && is_space(at(1))) {
+      if (!plain_triangle(t.substr(2))) scan.supported = false;
+      ++scan.section_faces.back();
+    } else if (t.compare(0, 6, "usemtl") == 0) {
+      scan.last_usemtl = line;
+    } else if (t.compare(0, 6, "mtllib") == 0 && is_space(at(6))) {
+      if (scan.first_mtllib.empty()) scan.first_mtllib = line;
+    } else if ((t[0] == 'g' || t[0] == 'o') && is_space(at(1))) {
+      scan.last_group = line;
+      scan.section_faces.push_back(0);
+    } else if (t[0] == 't' && is_space(at(1))) {
+      scan.supported = false;  // tags
+    } else if (t[0] == 's' && is_space(at(1))) {
+      scan.last_smoothing = line;
+    }
+  }
+  return scan;
+}
+
+// The chunks: about `chunk_bytes` each, cut after a '\n'.
+std::vector<size_t> chunk_starts(std::string_view text, size_t chunk_bytes) {
+  std::vector<size_t> starts{0};
+  for (size_t at = chunk_bytes; at < text.size(); at += chunk_bytes) {
+    size_t nl = text.find('\n', std::max(at, starts.back()));
+    if (nl == std::string_view::npos || nl + 1 >= text.size()) break;
+    starts.push_back(nl + 1);
+    at = nl + 1;
+  }
+  starts.push_back(text.size());
+  return starts;
+}
+
+// The state lines in force at the start of each chunk, in file order.
+std::vector<std::string> chunk_prefixes(const std::vector<ChunkScan>& scans) {
+  std::vector<std::string> prefixes(scans.size());
+  Line mtllib, usemtl, group, smoothing;
+  for (size_t k = 0; k < scans.size(); ++k) {
+    std::vector<Line> lines;
+    for (const Line& l : {mtllib, usemtl, group, smoothing})
+      if (!l.empty()) lines.push_back(l);
+    std::sort(lines.begin(), lines.end(), [](const Line& a, const Line& b) { return a.at < b.at; });
+    for (const Line& l : lines) prefixes[k].append(l.text).append("\n");
+    const ChunkScan& s = scans[k];
+    if (mtllib.empty()) mtllib = s.first_mtllib;
+    if (!s.last_usemtl.empty()) usemtl = s.last_usemtl;
+    if (!s.last_group.empty()) group = s.last_group;
+    if (!s.last_smoothing.empty()) smoothing = s.last_smoothing;
+  }
+  return prefixes;
+}
+
+// The warnings of a chunk that the whole-file parse gives alike: unknown
+// materials (no line number). Index bounds are checked over the whole text
+// by the caller; anything else: false.
+bool keep_warnings(const std::string& warn, std::string* kept) {
+  std::istringstream in(warn);
+  std::string l;
+  while (std::getline(in, l)) {
+    if (l.empty()) continue;
+    if (l.rfind("material [", 0) == 0) kept->append(l).append("\n");
+    else if (l.rfind("Vertex indices out of bounds", 0) != 0 &&
+             l.rfind("Vertex normal indices out of bounds", 0) != 0 &&
+             l.rfind("Vertex texcoord indices out of bounds", 0) != 0)
+      return false;
+  }
+  return true;
+}
+
+struct ChunkResult {
+  bool ok = false;
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::string warn;
+};
+
+// The chunk's shapes are those of its sections with faces, each of triangles only.
+bool shapes_match_scan(const ChunkResult& r, const ChunkScan& s) {
+  size_t next = 0;
+  for (size_t faces : s.section_faces) {
+    if (faces == 0) continue;
+    if (next == r.shapes.size()) return false;
+    const tinyobj::mesh_t& m = r.shapes[next++].mesh;
+    if (m.num_face_vertices.size() != faces || m.indices.size() != 3 * faces || m.material_ids.size() != faces)
+      return false;
+    if (std::any_of(m.num_face_vertices.begin(), m.num_face_vertices.end(), [](auto n) { return n != 3; }))
+      return false;
+  }
+  for (const tinyobj::shape_t& shape : r.shapes)
+    if (!shape.lines.indices.empty() || !shape.points.indices.empty() || !shape.mesh.tags.empty()) return false;
+  return next == r.shapes.size();
+}
+
+template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+}  // namespace
+
+bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out) {
+  const std::vector<size_t> starts = chunk_starts(text, std::max<size_t>(chunk_bytes, 1));
+  const size_t n = starts.size() - 1;
+  std::vector<ChunkScan> scans(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t k) { scans[k] = scan_chunk(text, starts[k], starts[k + 1]); });
+  if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
+  const std::vector<std::string> prefixes = chunk_prefixes(scans);
+
+  std::vector<ChunkResult> results(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t k) {
+    ChunkResult& r = results[k];
+    TextStreamBuffer buffer(prefixes[k], text.substr(starts[k], starts[k + 1] - starts[k]));
+    std::istream in(&buffer);
+    std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    r.ok = tinyobj::LoadObj(&r.attrib, &r.shapes, &materials, &warn, &err, &in, reader.get(),
+                            /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
+           keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
+  });
+  if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
+
+  ObjParse& o = *out;
+  o = ObjParse{};
+  bool all_colors = true;
+  size_t groups_before = 0;  // g/o lines before the chunk: the section its first faces belong to
+  size_t open_section = ~size_t(0);
+  for (size_t k = 0; k < n; ++k) {
+    ChunkResult& r = results[k];
+    append(o.attrib.vertices, r.attrib.vertices);
+    append(o.attrib.normals, r.attrib.normals);
+    append(o.attrib.texcoords, r.attrib.texcoords);
+    all_colors &= r.attrib.colors.size() == r.attrib.vertices.size();
+    if (all_colors) append(o.attrib.colors, r.attrib.colors);
+    o.warn += r.warn;
+    size_t next = 0;
+    for (size_t j = 0; j < scans[k].section_faces.size(); ++j) {
+      if (scans[k].section_faces[j] == 0) continue;
+      tinyobj::shape_t& piece = r.shapes[next++];
+      const size_t section = groups_before + j;
+      if (section == open_section) {
+        tinyobj::mesh_t& to = o.shapes.back().mesh;
+        append(to.indices, piece.mesh.indices);
+        append(to.num_face_vertices, piece.mesh.num_face_vertices);
+        append(to.material_ids, piece.mesh.material_ids);
+        append(to.smoothing_group_ids, piece.mesh.smoothing_group_ids);
+      } else {
+        o.shapes.push_back(std::move(piece));
+        open_section = section;
+      }
+    }
+    groups_before += scans[k].section_faces.size() - 1;
+  }
+  if (!all_colors) o.attrib.colors.clear();
+  // LoadObj warns of a face index past the last vertex (the reader makes that an error).
+  const int vertex_count = int(o.attrib.vertices.size() / 3);
+  for (const tinyobj::shape_t& s : o.shapes)
+    for (const tinyobj::index_t& ix : s.mesh.indices)
+      if (ix.vertex_index < 0 || ix.vertex_index >= vertex_count) return false;
+  return true;
+}
+
+}  // namespace rayform

@@ -1,0 +1,50 @@
+// An OBJ text parsed by tinyobjloader in chunks at once, with exactly the
+// result of one tinyobj::LoadObj(triangulate = true, default_vcols_fallback =
+// false) over the whole text, or not at all.
+//
+// The text is cut at line ends into chunks; a quick scan of each chunk (line
+// kinds only, no numbers) finds the state lines (mtllib, usemtl, g, o, s) and
+// what the stitching cannot reproduce. Each chunk is then parsed by LoadObj
+// behind copies of the state lines in force at its start (the first mtllib,
+// the last usemtl, g/o and s before it, in file order), so that its faces get
+// the material, smoothing group and shape name the whole-file parse gives
+// them; positive face indices are absolute already. The chunks' vertex
+// arrays are concatenated and their shapes joined where a `g`/`o` section
+// runs across a chunk end.
+//
+// Falls back (returns false) where that would not be exact: polygons other
+// than triangles (LoadObj splits them by the positions of their corners,
+// which a chunk may not hold), negative (relative) indices, lines, points,
+// tags and skin weights, a lone '\r' line end or a NUL byte, faces with
+// fewer than three corners, a face index past the last vertex, any parse
+// error, and any tinyobjloader warning other than an unknown material
+// (warnings carry line numbers or depend on the order of a whole file).
+#pragma once
+
+#include <tiny_obj_loader.h>
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rayform {
+
+// What tinyobj::LoadObj gives (its materials aside: see ObjSceneBuilder).
+struct ObjParse {
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::string warn;
+};
+
+// A fresh material reader per LoadObj call (each one is asked at its first mtllib).
+using MaterialReaderFactory = std::function<std::unique_ptr<tinyobj::MaterialReader>()>;
+
+// Parses `text` in chunks of about `chunk_bytes` (at least one line each) at
+// once. False, with `out` unspecified, where the result could differ from one
+// LoadObj over the whole text: then parse it that way.
+bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out);
+
+}  // namespace rayform
