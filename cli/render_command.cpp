@@ -3,7 +3,11 @@
 #include "read_flags.h"
 #include "render_job.h"
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace rayform::cli {
 namespace {
@@ -39,25 +43,31 @@ DepthOutput parse_depth(const std::string& s) {
   return d;
 }
 
-// "X,Y,Z" -> vector.
-vec3 parse_vec3(const std::string& s, const char* option) {
-  vec3 v;
+// "A,B,..." -> the numbers, all finite; none when anything else is in the way.
+std::optional<std::vector<float>> parse_numbers(const std::string& s) {
+  std::vector<float> v;
   size_t pos = 0;
   try {
-    for (int k = 0; k < 3; ++k) {
+    for (;;) {
       size_t used = 0;
-      v[k] = std::stof(s.substr(pos), &used);
+      v.push_back(std::stof(s.substr(pos), &used));
       pos += used;
-      if (k < 2) {
-        if (pos >= s.size() || s[pos] != ',') throw std::invalid_argument("comma");
-        ++pos;
-      }
+      if (pos == s.size()) break;
+      if (s[pos] != ',') return std::nullopt;
+      ++pos;
     }
-    if (pos != s.size() || !is_finite(v)) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
+    return std::nullopt;
   }
+  if (!std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); })) return std::nullopt;
   return v;
+}
+
+// "X,Y,Z" -> vector.
+vec3 parse_vec3(const std::string& s, const char* option) {
+  std::optional<std::vector<float>> v = parse_numbers(s);
+  if (!v || v->size() != 3) throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
+  return vec3((*v)[0], (*v)[1], (*v)[2]);
 }
 
 struct RenderArgs {
@@ -100,9 +110,16 @@ void add_render_command(CLI::App& app) {
   render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
       ->check(CLI::IsMember({"auto", "raw", "srgb"}))
       ->capture_default_str();
-  render->add_option("--look-from", a->look_from, "Camera position X,Y,Z");
-  render->add_option("--look-at", a->look_at, "Point the camera looks at X,Y,Z");
-  render->add_option("--up", a->up, "Camera up vector X,Y,Z");
+  render
+      ->add_option("--look-from", a->look_from,
+                   "Camera position (without --look-at: looking at the centre of the scene's bounds)")
+      ->type_name("X,Y,Z");
+  render->add_option("--look-at", a->look_at, "Point the camera looks at")->type_name("X,Y,Z");
+  render
+      ->add_option("--up", a->up,
+                   "Camera up vector (default: the camera's; +y, or -z/+z looking straight down/up, when that is "
+                   "parallel to a new view direction)")
+      ->type_name("X,Y,Z");
   render->add_option("--fov", a->fov, "Camera opening angle in degrees");
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");

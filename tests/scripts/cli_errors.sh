@@ -43,6 +43,7 @@ expect_failure() {
   mkdir -p "$out"
   (cd "$out" && "$RAYFORM_BIN" "$@") >"$tmp/stdout" 2>"$tmp/stderr"
   local rc=$?
+  last_rc=$rc
   if [ $rc -eq 0 ]; then fail "$name" "exit status 0"; fi
   if [ $rc -ge 128 ]; then fail "$name" "crashed (exit status $rc)"; fi
   # Message lines: everything on stderr but the usage hints.
@@ -56,6 +57,12 @@ expect_failure() {
   left=$(ls -A "$out")
   if [ -n "$left" ]; then fail "$name" "files left behind: $left"; fi
   [ $failures -eq $before ] && echo "ok   [$name] exit $rc: $msg"
+}
+
+# expect_usage_error NAME REGEX ARGS...: expect_failure, with exit status 2 (usage).
+expect_usage_error() {
+  expect_failure "$@"
+  [ "$last_rc" -eq 2 ] || fail "$1" "exit status $last_rc, expected 2 (usage)"
 }
 
 ok="$in/ok.txt"
@@ -75,6 +82,9 @@ expect_failure missing-input 'missing -input' -size 20 20 -output o.png
 expect_failure missing-output 'missing -output' -input "$ok" -size 20 20
 expect_failure render-missing-output 'output' render "$ok" --size 20x20
 expect_failure depth-range 'MAX > MIN|depth' -input "$ok" -size 20 20 -output o.png -depth 12 8 d.png
+# Camera option values: one line naming the option and what it expects, exit 2.
+expect_usage_error look-from-not-a-number "^rayform: --look-from expects three numbers X,Y,Z, got '3,x,3'$" render "$ok" -o o.png --look-from 3,x,3
+expect_usage_error look-from-nan "--look-from expects three numbers" render "$ok" -o o.png --look-from 0,nan,1
 # Unwritable outputs.
 expect_failure output-folder-missing "nofolder/o.png.*nofolder" -input "$ok" -size 20 20 -output nofolder/o.png
 expect_failure output-unknown-extension "o\.xyz" -input "$ok" -size 20 20 -output o.xyz
