@@ -26,16 +26,23 @@ namespace fs = std::filesystem;
 namespace {
 
 // Chooses the camera rendered and applies --look-from/--look-at/--up/--fov
-// to it. An asset file without a camera gets the default camera
-// (scene/scene_defaults.h). --look-from alone aims at the centre of the scene's
+// to it. --orbit and --frame replace the file's cameras with one placed by
+// orbit_camera (scene/scene_defaults.h); an asset file without a camera gets
+// the default camera. --look-from alone aims at the centre of the scene's
 // bounds; an up vector the new direction makes useless is replaced
 // (up_not_parallel), an explicit --up parallel to it is an error.
 void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
   if (job.fov && !(*job.fov > 0.f && *job.fov < 180.f))
     throw Error("--fov must lie strictly between 0 and 180 degrees");
   auto bounds = [&] { return scene_stats(scene, job.limits.instances).bounds; };
-  if (asset && add_default_camera(scene))
+  if (job.orbit) {
+    scene.cameras = {orbit_camera(bounds(), *job.orbit, job.fov.value_or(default_camera_fov_deg))};
+  } else if (job.frame) {
+    scene.cameras.clear();
+    add_default_camera(scene);
+  } else if (asset && add_default_camera(scene)) {
     std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
+  }
   if (!(job.look_from || job.look_at || job.up || job.fov)) return;
   const int camera = job.render.camera;
   if (camera < 0 || camera >= int(scene.cameras.size()))
