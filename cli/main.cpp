@@ -26,6 +26,7 @@ Examples:
     [-spp N] [-threads N] [-stats] [-generic] [-quiet]   (README.md explains each)
   Subcommands:
     rayform render scene.txt -o out.png --size 640x480 --depth 8:12:depth.png --normals normals.png
+    rayform render duck.gltf -o duck.png --orbit 45,30      (camera around the model, which fits)
     rayform info scene.txt
 )";
 

@@ -3,7 +3,11 @@
 #include "read_flags.h"
 #include "render_job.h"
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace rayform::cli {
 namespace {
@@ -39,25 +43,42 @@ DepthOutput parse_depth(const std::string& s) {
   return d;
 }
 
-// "X,Y,Z" -> vector.
-vec3 parse_vec3(const std::string& s, const char* option) {
-  vec3 v;
+// "A,B,..." -> the numbers, all finite; none when anything else is in the way.
+std::optional<std::vector<float>> parse_numbers(const std::string& s) {
+  std::vector<float> v;
   size_t pos = 0;
   try {
-    for (int k = 0; k < 3; ++k) {
+    for (;;) {
       size_t used = 0;
-      v[k] = std::stof(s.substr(pos), &used);
+      v.push_back(std::stof(s.substr(pos), &used));
       pos += used;
-      if (k < 2) {
-        if (pos >= s.size() || s[pos] != ',') throw std::invalid_argument("comma");
-        ++pos;
-      }
+      if (pos == s.size()) break;
+      if (s[pos] != ',') return std::nullopt;
+      ++pos;
     }
-    if (pos != s.size() || !is_finite(v)) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
+    return std::nullopt;
   }
+  if (!std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); })) return std::nullopt;
   return v;
+}
+
+// "X,Y,Z" -> vector.
+vec3 parse_vec3(const std::string& s, const char* option) {
+  std::optional<std::vector<float>> v = parse_numbers(s);
+  if (!v || v->size() != 3) throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
+  return vec3((*v)[0], (*v)[1], (*v)[2]);
+}
+
+// "AZ,EL" or "AZ,EL,DIST" -> orbit, checked by orbit_problem.
+Orbit parse_orbit(const std::string& s) {
+  std::optional<std::vector<float>> v = parse_numbers(s);
+  if (!v || v->size() < 2 || v->size() > 3)
+    throw UsageError("--orbit expects two or three numbers AZ,EL[,DIST], got '" + s + "'");
+  Orbit orbit{(*v)[0], (*v)[1], v->size() == 3 ? std::optional<float>((*v)[2]) : std::nullopt};
+  if (std::string problem = orbit_problem(orbit); !problem.empty())
+    throw UsageError("--orbit AZ,EL[,DIST]: " + problem + ", got '" + s + "'");
+  return orbit;
 }
 
 struct RenderArgs {
@@ -65,7 +86,7 @@ struct RenderArgs {
   ReadFlags read;
   std::string size = std::to_string(RenderOptions{}.width) + "x" + std::to_string(RenderOptions{}.height);
   std::string depth, dialect, filter = "box", color = "auto";
-  std::string look_from, look_at, up, background;
+  std::string orbit, look_from, look_at, up, background;
   float fov = 0.f;
 };
 
@@ -89,7 +110,7 @@ void add_render_command(CLI::App& app) {
   render->add_option("--albedo", job.albedo, "Unlit surface colour image");
   render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")
       ->check(CLI::IsMember({"2012", "2019"}));
-  render->add_option("--camera", job.render.camera, "Camera index");
+  CLI::Option* camera = render->add_option("--camera", job.render.camera, "Camera index");
   render->add_option("--threads", job.render.threads, "Worker threads (0: all)");
   render->add_flag("--shadows", job.render.shadows, "Shadow rays to every light");
   render->add_option("--bounces", job.render.bounces, "Reflection/refraction depth");
@@ -100,9 +121,26 @@ void add_render_command(CLI::App& app) {
   render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
       ->check(CLI::IsMember({"auto", "raw", "srgb"}))
       ->capture_default_str();
-  render->add_option("--look-from", a->look_from, "Camera position X,Y,Z");
-  render->add_option("--look-at", a->look_at, "Point the camera looks at X,Y,Z");
-  render->add_option("--up", a->up, "Camera up vector X,Y,Z");
+  render->add_flag("--frame", job.frame,
+                   "Ignore the file's cameras: the default camera, on the +z side framing the scene's bounds");
+  CLI::Option* orbit =
+      render
+          ->add_option("--orbit", a->orbit,
+                       "Ignore the file's cameras: look at the bounds' centre, up +y, from azimuth AZ (degrees about "
+                       "+y, counter-clockwise seen from above; 0: the +z side, 90: the +x side), elevation EL "
+                       "(degrees above the horizontal plane, -90 < EL < 90) and distance DIST (default: the model "
+                       "fits)")
+          ->type_name("AZ,EL[,DIST]");
+  render
+      ->add_option("--look-from", a->look_from,
+                   "Camera position (without --look-at: looking at the centre of the scene's bounds)")
+      ->type_name("X,Y,Z");
+  render->add_option("--look-at", a->look_at, "Point the camera looks at")->type_name("X,Y,Z");
+  render
+      ->add_option("--up", a->up,
+                   "Camera up vector (default: the camera's; +y, or -z/+z looking straight down/up, when that is "
+                   "parallel to a new view direction)")
+      ->type_name("X,Y,Z");
   render->add_option("--fov", a->fov, "Camera opening angle in degrees");
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
@@ -111,7 +149,7 @@ void add_render_command(CLI::App& app) {
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a] {
+  render->callback([a, camera, orbit] {
     parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
@@ -119,6 +157,14 @@ void add_render_command(CLI::App& app) {
     a->job.color = a->color == "raw"    ? RenderJob::ColorEncoding::raw
                    : a->color == "srgb" ? RenderJob::ColorEncoding::srgb
                                         : RenderJob::ColorEncoding::automatic;
+    if (orbit->count() > 0) {  // given, even as ''
+      if (!a->look_from.empty() || !a->look_at.empty())
+        throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");
+      a->job.orbit = parse_orbit(a->orbit);
+    }
+    if ((a->job.orbit || a->job.frame) && camera->count() > 0)
+      throw UsageError(std::string(a->job.orbit ? "--orbit" : "--frame") +
+                       " replaces the file's cameras: it cannot be combined with --camera");
     if (!a->look_from.empty()) a->job.look_from = parse_vec3(a->look_from, "--look-from");
     if (!a->look_at.empty()) a->job.look_at = parse_vec3(a->look_at, "--look-at");
     if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");

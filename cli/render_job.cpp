@@ -9,6 +9,7 @@
 #include "render/render.h"
 #include "scene/error.h"
 #include "scene/scene_defaults.h"
+#include "scene/scene_stats.h"
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -24,26 +25,43 @@ namespace rayform::cli {
 namespace fs = std::filesystem;
 namespace {
 
-// Applies --look-from/--look-at/--up/--fov to the chosen camera.
-void apply_camera_overrides(const RenderJob& job, Scene& scene) {
+// Chooses the camera rendered and applies --look-from/--look-at/--up/--fov
+// to it. --orbit and --frame replace the file's cameras with one placed by
+// orbit_camera (scene/scene_defaults.h); an asset file without a camera gets
+// the default camera. --look-from alone aims at the centre of the scene's
+// bounds; an up vector the new direction makes useless is replaced
+// (up_not_parallel), an explicit --up parallel to it is an error.
+void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
+  if (job.fov && !(*job.fov > 0.f && *job.fov < 180.f))
+    throw Error("--fov must lie strictly between 0 and 180 degrees");
+  auto bounds = [&] { return scene_stats(scene, job.limits.instances).bounds; };
+  if (job.orbit) {
+    scene.cameras = {orbit_camera(bounds(), *job.orbit, job.fov.value_or(default_camera_fov_deg))};
+  } else if (job.frame) {
+    scene.cameras.clear();
+    add_default_camera(scene);
+  } else if (asset && add_default_camera(scene)) {
+    std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
+  }
   if (!(job.look_from || job.look_at || job.up || job.fov)) return;
   const int camera = job.render.camera;
   if (camera < 0 || camera >= int(scene.cameras.size()))
     throw Error("the scene has no camera " + std::to_string(camera) + " to adjust");
   Camera& c = scene.cameras[camera];
-  vec3 target = c.center + c.direction;  // keep looking at the same point when only moving
-  if (job.look_from) c.center = *job.look_from;
-  if (job.look_at) target = *job.look_at;
   if (job.look_from || job.look_at) {
-    if (target == c.center) throw Error("--look-at must differ from --look-from");
-    c.direction = target - c.center;
+    const vec3 from = job.look_from.value_or(c.center);
+    const vec3 target = job.look_at ? *job.look_at : framing_target(bounds());
+    if (target == from)
+      throw Error(job.look_at ? "--look-at must differ from --look-from"
+                              : "--look-from is the centre of the scene's bounds, where the camera would look: "
+                                "give --look-at");
+    c.center = from;
+    c.direction = target - from;
+    if (!job.up) c.up = up_not_parallel(c.up, c.direction);
   }
   if (job.up) c.up = *job.up;
   if (glm::length(glm::cross(c.direction, c.up)) == 0.f) throw Error("--up must not be parallel to the view direction");
-  if (job.fov) {
-    if (!(*job.fov > 0.f && *job.fov < 180.f)) throw Error("--fov must lie strictly between 0 and 180 degrees");
-    c.fov_deg = *job.fov;
-  }
+  if (job.fov) c.fov_deg = *job.fov;
 }
 
 void encode_srgb(Image& img) {
@@ -109,9 +127,7 @@ void run_render_job(const RenderJob& job) {
   // a camera, and without lights its ambient light is white).
   // The head-light follows the camera rendered, as the overrides left it.
   const bool asset = loaded.format != SceneFormat::course_txt;
-  if (asset && add_default_camera(loaded.scene))
-    std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
-  apply_camera_overrides(job, loaded.scene);
+  set_up_camera(job, loaded.scene, asset);
   if (asset && add_headlight(loaded.scene, job.render.camera))
     std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
   if (job.background) loaded.scene.background.color = *job.background;

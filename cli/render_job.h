@@ -3,6 +3,7 @@
 #pragma once
 
 #include "render/render.h"
+#include "scene/scene_defaults.h"
 #include "scene_io.h"
 
 #include <optional>
@@ -28,7 +29,11 @@ struct RenderJob {
   std::optional<CourseDialect> dialect;
   // Output transfer function: auto = raw for course scenes, sRGB for assets.
   enum class ColorEncoding { automatic, raw, srgb } color = ColorEncoding::automatic;
-  // Camera and background overrides (any format).
+  // Camera and background overrides (any format). --frame and --orbit
+  // replace the file's cameras (scene/scene_defaults.h); the others then
+  // adjust the camera rendered.
+  bool frame = false;
+  std::optional<Orbit> orbit;
   std::optional<vec3> look_from, look_at, up, background;
   std::optional<float> fov;
   bool quiet = false;

@@ -1,39 +1,81 @@
 #include "scene/scene_defaults.h"
 
+#include "scene/error.h"
 #include "scene/scene_stats.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace rayform {
+namespace {
 
-bool add_default_camera(Scene& scene) {
-  if (!scene.cameras.empty()) return false;
+bool usable(const Bounds3& b) { return !b.empty() && is_finite(b.lo) && is_finite(b.hi); }
+
+}  // namespace
+
+std::string orbit_problem(const Orbit& orbit) {
+  if (!std::isfinite(orbit.azimuth_deg)) return "azimuth AZ must be a finite number of degrees";
+  if (!(orbit.elevation_deg > -90.f && orbit.elevation_deg < 90.f))
+    return "elevation EL must lie strictly between -90 and 90 degrees";
+  if (orbit.distance && !(*orbit.distance > 0.f && std::isfinite(*orbit.distance)))
+    return "distance DIST must be a finite number greater than 0";
+  return {};
+}
+
+vec3 framing_target(const Bounds3& bounds) { return usable(bounds) ? bounds.center() : vec3(0.f); }
+
+Camera orbit_camera(const Bounds3& bounds, const Orbit& orbit, float fov_deg) {
+  if (std::string problem = orbit_problem(orbit); !problem.empty()) throw Error("orbit: " + problem);
+  if (!(fov_deg > 0.f && fov_deg < 180.f)) throw Error("orbit: the field of view must lie strictly between 0 and 180");
   Camera c;
-  c.name = "default";
   c.projection = Camera::Projection::perspective;
   c.aspect = Camera::Aspect::fit;
   c.up_vector = Camera::UpVector::orthonormal;
-  c.fov_deg = default_camera_fov_deg;
-  c.direction = vec3(0.f, 0.f, -1.f);
+  c.fov_deg = fov_deg;
   c.up = vec3(0.f, 1.f, 0.f);
-  const Bounds3 b = scene_stats(scene).bounds;
-  if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi)) {
-    c.center = vec3(0.f, 0.f, 5.f);
-  } else {
-    // Camera at (cx, cy, cz + d) looking down -z. A box corner at (x, y, z)
-    // relative to the centre lies in view when |x|, |y| <= t (d - z), with
-    // t = tan(fov / 2) (vertical; horizontally at least as much for images
-    // at least as wide as tall). The worst corner gives
-    //   d = h.z + max(h.x, h.y) / t,  h = half extent;
-    // the 10% margin widens the framed half size.
-    const vec3 h = 0.5f * b.extent();
-    const float t = std::tan(radians(c.fov_deg) * 0.5f);
-    float half = 1.1f * std::max(h.x, h.y);
-    if (!(half > 0.f)) half = std::max(h.z, 1e-3f);  // flat along x and y: a line or a point
-    const float d = h.z + half / t;
-    c.center = b.center() + vec3(0.f, 0.f, d);
+  // The camera's frame: `back` from the centre to the camera, `right` and
+  // `top` across the image. At (0, 0) they are exactly +z, +x and +y.
+  const float az = radians(orbit.azimuth_deg), el = radians(orbit.elevation_deg);
+  const float sa = std::sin(az), ca = std::cos(az), se = std::sin(el), ce = std::cos(el);
+  const vec3 back(sa * ce, se, ca * ce), right(ca, 0.f, -sa), top(-sa * se, ce, -ca * se);
+  c.direction = vec3(0.f) - back;  // 0 - 0 is +0: the default camera's direction bit for bit
+  float d = 5.f;
+  if (orbit.distance) {
+    d = *orbit.distance;
+  } else if (usable(bounds)) {
+    // A box corner at (x, y, z) in the camera's frame, relative to the
+    // centre, lies in view when |x|, |y| <= t (d - z), with t = tan(fov / 2)
+    // (vertical; horizontally at least as much for images at least as wide
+    // as tall). The box's half extents in that frame (h projected on each
+    // axis) bound every corner, so
+    //   d = h_back + max(h_right, h_top) / t
+    // suffices; the 10% margin widens the framed half size.
+    const vec3 h = 0.5f * bounds.extent();
+    const float hr = glm::dot(glm::abs(right), h), ht = glm::dot(glm::abs(top), h), hb = glm::dot(glm::abs(back), h);
+    const float t = std::tan(radians(fov_deg) * 0.5f);
+    float half = 1.1f * std::max(hr, ht);
+    if (!(half > 0.f)) half = std::max(hb, 1e-3f);  // flat across the view: a line or a point
+    d = hb + half / t;
   }
+  c.center = framing_target(bounds) + d * back;
+  if (!is_finite(c.center)) throw Error("orbit: the camera's position is out of range");
+  return c;
+}
+
+vec3 up_not_parallel(vec3 up, vec3 direction) {
+  auto parallel = [&](vec3 u) {
+    const float ld = glm::length(direction), lu = glm::length(u);
+    return !(glm::length(glm::cross(direction, u)) > 1e-6f * ld * lu);
+  };
+  if (!parallel(up)) return up;
+  if (!parallel(vec3(0.f, 1.f, 0.f))) return vec3(0.f, 1.f, 0.f);
+  return vec3(0.f, 0.f, direction.y < 0.f ? -1.f : 1.f);
+}
+
+bool add_default_camera(Scene& scene) {
+  if (!scene.cameras.empty()) return false;
+  Camera c = orbit_camera(scene_stats(scene).bounds, Orbit{});
+  c.name = "default";
   scene.cameras.push_back(c);
   return true;
 }

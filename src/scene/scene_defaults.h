@@ -1,20 +1,59 @@
 // Defaults for scenes whose files carry no camera or no light (OBJ always,
 // glTF often): a camera that frames the scene and a light that goes with it.
-// The caller decides whether to use them (the CLI reports what it added).
+// The same framing places a camera anywhere around the scene (orbit_camera),
+// for the command line's --frame and --orbit. The caller decides whether to
+// use them (the CLI reports what it added).
 #pragma once
 
+#include "geometry/bounds.h"
 #include "scene/scene.h"
+
+#include <optional>
+#include <string>
 
 namespace rayform {
 
 // Vertical opening angle of the default camera, degrees.
 inline constexpr float default_camera_fov_deg = 40.f;
 
-// When the scene has no camera, adds a perspective camera (aspect fit,
-// vertical field of view default_camera_fov_deg, +y up) on the +z side of the
-// scene's bounds, looking down -z at their centre, far enough that the whole
-// box lies inside the view with a 10% margin for any image at least as wide
-// as it is tall. An empty scene gets a camera at (0, 0, 5). Returns whether a
+// Where a camera stands on a sphere around the centre of a scene's bounds.
+struct Orbit {
+  // About the +y axis, degrees; 0 is the +z side (where the default camera
+  // stands), positive turns counter-clockwise seen from above (+90: the +x
+  // side, 180: the -z side, -90 or 270: the -x side).
+  float azimuth_deg = 0.f;
+  // Above the horizontal (xz) plane, degrees, strictly between -90 and 90
+  // (negative: from below).
+  float elevation_deg = 0.f;
+  // From the centre, > 0; none: the framing distance, at which the whole box
+  // lies in view with a 10% margin.
+  std::optional<float> distance;
+};
+
+// Empty when `orbit` is valid (finite, elevation strictly between -90 and 90,
+// distance > 0), else what is wrong, one line naming AZ, EL or DIST.
+std::string orbit_problem(const Orbit& orbit);
+
+// The point a camera aims at when nothing else says where: the centre of
+// `bounds`, or the origin when they are empty or not finite.
+vec3 framing_target(const Bounds3& bounds);
+
+// A perspective camera (aspect fit, vertical field of view fov_deg, up +y) at
+// `orbit` around framing_target(bounds), looking at it. The framing distance
+// keeps every corner of the box within the view with a 10% margin for any
+// image at least as wide as it is tall; for empty bounds it is 5. Orbit{}
+// (0, 0) is the default camera: on the +z side, looking down -z. Throws
+// rayform::Error for an orbit_problem or a fov outside (0, 180).
+Camera orbit_camera(const Bounds3& bounds, const Orbit& orbit, float fov_deg = default_camera_fov_deg);
+
+// `up`, unless it is parallel to `direction` (or zero); then +y, or for a
+// vertical direction -z looking down and +z looking up (the limit of tilting
+// the default camera's view over the top or under the bottom).
+vec3 up_not_parallel(vec3 up, vec3 direction);
+
+// When the scene has no camera, adds the default camera: orbit_camera at
+// Orbit{} with default_camera_fov_deg around the scene's bounds, named
+// "default" (an empty scene gets a camera at (0, 0, 5)). Returns whether a
 // camera was added. Throws rayform::Error when the node graph is invalid.
 bool add_default_camera(Scene& scene);
 

@@ -1,5 +1,6 @@
 // Default camera and headlight for scenes whose files have none.
 #include "obj/obj_reader.h"
+#include "scene/error.h"
 #include "scene/scene_defaults.h"
 #include "scene/scene_stats.h"
 #include "test_paths.h"
@@ -10,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace rayform {
 namespace {
@@ -132,6 +134,161 @@ TEST(SceneDefaults, EmptySceneGetsACameraAtZ5) {
   ASSERT_TRUE(add_default_camera(s));
   EXPECT_EQ(s.cameras[0].center, vec3(0, 0, 5));
   EXPECT_EQ(s.cameras[0].direction, vec3(0, 0, -1));
+}
+
+// The camera's position relative to `centre` as azimuth (degrees about +y
+// from +z towards +x), elevation (degrees above the xz plane) and distance.
+vec3 orbit_of(const Camera& c, vec3 centre) {
+  const vec3 p = c.center - centre;
+  const float dist = glm::length(p);
+  return vec3(std::atan2(p.x, p.z) * 180.f / pi, std::asin(p.y / dist) * 180.f / pi, dist);
+}
+
+TEST(SceneDefaults, OrbitZeroZeroIsTheDefaultCamera) {
+  for (const auto& [lo, hi] : std::vector<std::pair<vec3, vec3>>{{{-1, -1, -1}, {1, 1, 1}},
+                                                                 {{10, 0, -3}, {14, 1, 5}},
+                                                                 {{0, -5, 0}, {0.1f, 5, 0.1f}},
+                                                                 {{2, 2, 2}, {2, 2, 2}}}) {
+    Scene s = box_scene(lo, hi);
+    ASSERT_TRUE(add_default_camera(s));
+    const Camera d = s.cameras[0], o = orbit_camera(Bounds3{lo, hi}, Orbit{});
+    // Bit for bit (EXPECT_EQ on floats), -0 and +0 told apart.
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(o.center[k], d.center[k]);
+      EXPECT_EQ(o.direction[k], d.direction[k]);
+      EXPECT_EQ(std::signbit(o.direction[k]), std::signbit(d.direction[k]));
+    }
+    EXPECT_EQ(o.up, d.up);
+    EXPECT_EQ(o.fov_deg, d.fov_deg);
+    EXPECT_EQ(o.aspect, d.aspect);
+    EXPECT_EQ(o.projection, d.projection);
+    EXPECT_EQ(o.up_vector, d.up_vector);
+  }
+  // Empty bounds: at (0, 0, 5), like the default camera of an empty scene.
+  EXPECT_EQ(orbit_camera(Bounds3{}, Orbit{}).center, vec3(0, 0, 5));
+}
+
+TEST(SceneDefaults, OrbitPlacesTheCameraOnTheSphere) {
+  const Bounds3 b{{1, 2, 3}, {3, 4, 7}};  // centre (2, 3, 5)
+  const vec3 centre(2, 3, 5);
+  // Exact places: +90 is the +x side (counter-clockwise seen from above), 180 the -z side.
+  const struct {
+    Orbit orbit;
+    vec3 offset;
+  } places[] = {{{0, 0, 4.f}, {0, 0, 4}},
+                {{90, 0, 4.f}, {4, 0, 0}},
+                {{180, 0, 4.f}, {0, 0, -4}},
+                {{-90, 0, 4.f}, {-4, 0, 0}},
+                {{270, 0, 4.f}, {-4, 0, 0}},
+                {{0, 45, 2.f}, {0, std::sqrt(2.f), std::sqrt(2.f)}},
+                {{90, -30, 2.f}, {std::sqrt(3.f), -1, 0}}};
+  for (const auto& [orbit, offset] : places) {
+    const Camera c = orbit_camera(b, orbit);
+    SCOPED_TRACE(testing::Message() << "orbit " << orbit.azimuth_deg << "," << orbit.elevation_deg);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c.center[k], centre[k] + offset[k], 1e-5f);
+    // Looks at the centre, up +y, the default camera's projection.
+    const vec3 to_centre = glm::normalize(centre - c.center);
+    EXPECT_NEAR(glm::length(glm::normalize(c.direction) - to_centre), 0.f, 1e-6f);
+    EXPECT_EQ(c.up, vec3(0, 1, 0));
+    EXPECT_EQ(c.fov_deg, default_camera_fov_deg);
+    EXPECT_EQ(c.aspect, Camera::Aspect::fit);
+  }
+  // Angles and distance read back from the position.
+  for (float az : {-170.f, -45.f, 0.f, 30.f, 135.f})
+    for (float el : {-89.f, -20.f, 0.f, 60.f, 89.9f}) {
+      const vec3 got = orbit_of(orbit_camera(b, Orbit{az, el, 7.5f}), centre);
+      SCOPED_TRACE(testing::Message() << "orbit " << az << "," << el);
+      if (std::abs(el) < 89.f) {  // straight above, the azimuth is lost to rounding
+        EXPECT_NEAR(got.x, az, 1e-3f);
+      }
+      EXPECT_NEAR(got.y, el, 2e-3f);
+      EXPECT_NEAR(got.z, 7.5f, 1e-4f);
+    }
+}
+
+TEST(SceneDefaults, OrbitFramesTheBoundsFromAnySide) {
+  for (const auto& [lo, hi] : std::vector<std::pair<vec3, vec3>>{{{-1, -1, -1}, {1, 1, 1}},
+                                                                 {{10, 0, -3}, {14, 1, 5}},
+                                                                 {{0, -5, 0}, {0.1f, 5, 0.1f}},
+                                                                 {{-3, 2, 7}, {3, 2.5f, 9}}})
+    for (float az : {0.f, 30.f, 90.f, 200.f, -45.f})
+      for (float el : {-80.f, -30.f, 0.f, 45.f, 89.f}) {
+        SCOPED_TRACE(testing::Message() << "orbit " << az << "," << el << " box " << lo.x << " " << lo.y << " "
+                                        << lo.z);
+        const Camera c = orbit_camera(Bounds3{lo, hi}, Orbit{az, el, std::nullopt});
+        // Every corner in view with the margin; the framing is conservative
+        // off the axes (the box's extents in the camera's frame), but the
+        // box still fills at least half of the view.
+        float m = max_image_coordinate(c, Bounds3{lo, hi});
+        EXPECT_LE(m, 1.f / 1.1f + 1e-4f);
+        EXPECT_GE(m, 0.5f);
+        // On the sphere asked for, around the centre.
+        const vec3 got = orbit_of(c, 0.5f * (lo + hi));
+        EXPECT_NEAR(got.y, el, 0.01f);
+        if (std::abs(el) < 89.f) {
+          EXPECT_NEAR(std::remainder(got.x - az, 360.f), 0.f, 0.01f);
+        }
+      }
+}
+
+TEST(SceneDefaults, OrbitFramesForTheFieldOfView) {
+  const Bounds3 b{{-1, -2, -1}, {1, 2, 1}};
+  const float d40 = orbit_of(orbit_camera(b, Orbit{30, 10, std::nullopt}), vec3(0)).z;
+  for (float fov : {10.f, 20.f, 90.f, 150.f}) {
+    const Camera c = orbit_camera(b, Orbit{30, 10, std::nullopt}, fov);
+    EXPECT_EQ(c.fov_deg, fov);
+    EXPECT_LE(max_image_coordinate(c, b), 1.f / 1.1f + 1e-4f) << fov;
+    EXPECT_GE(max_image_coordinate(c, b), 0.5f) << fov;
+    const float d = orbit_of(c, vec3(0)).z;
+    if (fov < 40.f) {
+      EXPECT_GT(d, d40) << fov;
+    } else {
+      EXPECT_LT(d, d40) << fov;
+    }
+  }
+  // An explicit distance is kept whatever the field of view.
+  EXPECT_NEAR(orbit_of(orbit_camera(b, Orbit{0, 0, 3.f}, 10.f), vec3(0)).z, 3.f, 1e-6f);
+}
+
+TEST(SceneDefaults, OrbitProblems) {
+  EXPECT_EQ(orbit_problem(Orbit{}), "");
+  EXPECT_EQ(orbit_problem(Orbit{-720, 89.9f, 1e-3f}), "");
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  for (const Orbit& bad :
+       {Orbit{0, 90, std::nullopt}, Orbit{0, -90, std::nullopt}, Orbit{0, 120, 1.f}, Orbit{0, nan, std::nullopt}}) {
+    EXPECT_EQ(orbit_problem(bad), "elevation EL must lie strictly between -90 and 90 degrees");
+    EXPECT_THROW(orbit_camera(Bounds3{}, bad), Error);
+  }
+  for (const Orbit& bad : {Orbit{nan, 0, std::nullopt}, Orbit{inf, 0, std::nullopt}}) {
+    EXPECT_EQ(orbit_problem(bad), "azimuth AZ must be a finite number of degrees");
+    EXPECT_THROW(orbit_camera(Bounds3{}, bad), Error);
+  }
+  for (float dist : {0.f, -1.f, inf, nan}) {
+    const Orbit bad{0, 10, dist};
+    EXPECT_EQ(orbit_problem(bad), "distance DIST must be a finite number greater than 0");
+    EXPECT_THROW(orbit_camera(Bounds3{}, bad), Error);
+  }
+  for (float fov : {0.f, 180.f, -5.f, nan}) EXPECT_THROW(orbit_camera(Bounds3{}, Orbit{}, fov), Error);
+}
+
+TEST(SceneDefaults, FramingTargetIsTheBoundsCentre) {
+  EXPECT_EQ(framing_target(Bounds3{{1, 2, 3}, {3, 4, 7}}), vec3(2, 3, 5));
+  EXPECT_EQ(framing_target(Bounds3{}), vec3(0));
+  EXPECT_EQ(framing_target(Bounds3{{0, 0, -infinity}, {1, 1, 1}}), vec3(0));
+}
+
+TEST(SceneDefaults, UpIsReplacedOnlyWhenParallel) {
+  const vec3 y(0, 1, 0);
+  EXPECT_EQ(up_not_parallel(y, vec3(1, -1, 0)), y);
+  EXPECT_EQ(up_not_parallel(vec3(0, 0, 2), vec3(1, 0, 0)), vec3(0, 0, 2));
+  // Parallel (either way): +y, unless the view is vertical: -z looking down, +z looking up.
+  EXPECT_EQ(up_not_parallel(vec3(0, 0, 1), vec3(0, 0, -3)), y);
+  EXPECT_EQ(up_not_parallel(vec3(1, 1, 1), vec3(-2, -2, -2)), y);
+  EXPECT_EQ(up_not_parallel(y, vec3(0, -4.5f, 0)), vec3(0, 0, -1));
+  EXPECT_EQ(up_not_parallel(y, vec3(0, 2, 0)), vec3(0, 0, 1));
+  EXPECT_EQ(up_not_parallel(vec3(0, -1, 0), vec3(0, -1, 0)), vec3(0, 0, -1));
+  // Zero up: treated as parallel.
+  EXPECT_EQ(up_not_parallel(vec3(0), vec3(1, 0, 0)), y);
 }
 
 TEST(SceneDefaults, FramesTheStanfordBunny) {

@@ -43,6 +43,7 @@ expect_failure() {
   mkdir -p "$out"
   (cd "$out" && "$RAYFORM_BIN" "$@") >"$tmp/stdout" 2>"$tmp/stderr"
   local rc=$?
+  last_rc=$rc
   if [ $rc -eq 0 ]; then fail "$name" "exit status 0"; fi
   if [ $rc -ge 128 ]; then fail "$name" "crashed (exit status $rc)"; fi
   # Message lines: everything on stderr but the usage hints.
@@ -56,6 +57,12 @@ expect_failure() {
   left=$(ls -A "$out")
   if [ -n "$left" ]; then fail "$name" "files left behind: $left"; fi
   [ $failures -eq $before ] && echo "ok   [$name] exit $rc: $msg"
+}
+
+# expect_usage_error NAME REGEX ARGS...: expect_failure, with exit status 2 (usage).
+expect_usage_error() {
+  expect_failure "$@"
+  [ "$last_rc" -eq 2 ] || fail "$1" "exit status $last_rc, expected 2 (usage)"
 }
 
 ok="$in/ok.txt"
@@ -75,6 +82,29 @@ expect_failure missing-input 'missing -input' -size 20 20 -output o.png
 expect_failure missing-output 'missing -output' -input "$ok" -size 20 20
 expect_failure render-missing-output 'output' render "$ok" --size 20x20
 expect_failure depth-range 'MAX > MIN|depth' -input "$ok" -size 20 20 -output o.png -depth 12 8 d.png
+# Camera option values: one line naming the option and what it expects, exit 2.
+expect_usage_error look-from-not-a-number "^rayform: --look-from expects three numbers X,Y,Z, got '3,x,3'$" render "$ok" -o o.png --look-from 3,x,3
+expect_usage_error look-from-nan "--look-from expects three numbers" render "$ok" -o o.png --look-from 0,nan,1
+orbit_numbers="^rayform: --orbit expects two or three numbers AZ,EL\[,DIST\], got"
+expect_usage_error orbit-one-number "$orbit_numbers '1'$" render "$ok" -o o.png --orbit 1
+expect_usage_error orbit-four-numbers "$orbit_numbers '1,2,3,4'$" render "$ok" -o o.png --orbit 1,2,3,4
+expect_usage_error orbit-letters "$orbit_numbers 'a,b'$" render "$ok" -o o.png --orbit a,b
+expect_usage_error orbit-empty "$orbit_numbers ''$" render "$ok" -o o.png --orbit ''
+expect_usage_error orbit-trailing-comma "$orbit_numbers '0,0,'$" render "$ok" -o o.png --orbit 0,0,
+expect_usage_error orbit-nan "$orbit_numbers 'nan,0'$" render "$ok" -o o.png --orbit nan,0
+expect_usage_error orbit-inf "$orbit_numbers '0,inf'$" render "$ok" -o o.png --orbit 0,inf
+expect_usage_error orbit-inf-distance "$orbit_numbers '0,0,-inf'$" render "$ok" -o o.png --orbit 0,0,-inf
+orbit_el="^rayform: --orbit AZ,EL\[,DIST\]: elevation EL must lie strictly between -90 and 90 degrees, got"
+expect_usage_error orbit-el-90 "$orbit_el '0,90'$" render "$ok" -o o.png --orbit 0,90
+expect_usage_error orbit-el-minus-90 "$orbit_el '0,-90'$" render "$ok" -o o.png --orbit=0,-90
+expect_usage_error orbit-el-120 "$orbit_el '10,120,3'$" render "$ok" -o o.png --orbit 10,120,3
+orbit_dist="^rayform: --orbit AZ,EL\[,DIST\]: distance DIST must be a finite number greater than 0, got"
+expect_usage_error orbit-dist-negative "$orbit_dist '0,10,-1'$" render "$ok" -o o.png --orbit 0,10,-1
+expect_usage_error orbit-dist-zero "$orbit_dist '0,10,0'$" render "$ok" -o o.png --orbit 0,10,0
+expect_usage_error orbit-and-look-from "^rayform: --orbit .*cannot be combined with --look-from or --look-at$" render "$ok" -o o.png --orbit 0,0 --look-from 1,2,3
+expect_usage_error orbit-and-look-at "^rayform: --orbit .*cannot be combined with --look-from or --look-at$" render "$ok" -o o.png --look-at 0,0,0 --orbit 0,0
+expect_usage_error orbit-and-camera "^rayform: --orbit .*cannot be combined with --camera$" render "$ok" -o o.png --orbit 0,0 --camera 0
+expect_usage_error frame-and-camera "^rayform: --frame .*cannot be combined with --camera$" render "$ok" -o o.png --camera 1 --frame
 # Unwritable outputs.
 expect_failure output-folder-missing "nofolder/o.png.*nofolder" -input "$ok" -size 20 20 -output nofolder/o.png
 expect_failure output-unknown-extension "o\.xyz" -input "$ok" -size 20 20 -output o.xyz
