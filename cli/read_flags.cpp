@@ -10,7 +10,7 @@ void add_read_flags(CLI::App& command, ReadFlags& flags) {
                      "NAME=VALUE: raise or lower a limit on what a scene may claim (" + limit_names() +
                          "; defaults: triangles and vertices " + std::to_string(defaults.triangles) + ", instances " +
                          std::to_string(defaults.instances) + ", texture-texels " +
-                         std::to_string(defaults.texture_texels) + ", json-depth " +
+                         std::to_string(defaults.texture_texels) + " (each side at most its square root), json-depth " +
                          std::to_string(defaults.json_depth) + ")");
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "

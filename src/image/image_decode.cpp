@@ -3,6 +3,8 @@
 #include "image/image_decoders.h"
 #include "scene/error.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace rayform {
@@ -23,9 +25,22 @@ std::string byte_count(uint64_t bytes) {
 }
 }  // namespace
 
+uint64_t max_texture_side(const DecodeOptions& options) {
+  // floor(sqrt(max_texels)), exact; sides are below 2^32 (squares do not wrap).
+  constexpr uint64_t most = 0xFFFFFFFFu;
+  uint64_t side = std::min<uint64_t>(uint64_t(std::sqrt(double(options.max_texels))), most);
+  while (side * side > options.max_texels) --side;
+  while (side < most && (side + 1) * (side + 1) <= options.max_texels) ++side;
+  return side;
+}
+
 std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes_per_texel,
                                  const DecodeOptions& options) {
   const uint64_t texels = width * height;
+  if (texels <= options.max_texels)
+    return "texture is " + std::to_string(width) + "x" + std::to_string(height) + ", a side longer than " +
+           std::to_string(max_texture_side(options)) + " texels (the side of the limit of " +
+           std::to_string(options.max_texels) + " texels; raise it with --limit texture-texels=N)";
   const uint64_t bytes = texels > UINT64_MAX / bytes_per_texel ? UINT64_MAX : texels * bytes_per_texel;
   return "texture is " + std::to_string(width) + "x" + std::to_string(height) + " (" + byte_count(bytes) +
          " decoded), more than the limit of " + std::to_string(options.max_texels) +

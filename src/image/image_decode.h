@@ -38,8 +38,16 @@ struct DecodedImage {
 
 enum class DecodeResult { ok, corrupt, too_large };
 
+// The longest side a texture may have: the side of a square of max_texels
+// (16384 by default). Readers allocate by the width (OpenImageIO's EXR read
+// made buffers of 256 rows for a fuzzed 2293761 x 1 file: 7 GB).
+uint64_t max_texture_side(const DecodeOptions& options);
+
+// Whether a texture of this size is refused: more than max_texels texels, or
+// a side longer than max_texture_side.
 inline bool exceeds_texel_limit(uint64_t width, uint64_t height, const DecodeOptions& options) {
-  return width * height > options.max_texels;  // (each side < 2^32: no wrap)
+  const uint64_t side = max_texture_side(options);
+  return width > side || height > side || width * height > options.max_texels;  // (each side < 2^32: no wrap)
 }
 
 // Whether decode_image_memory handles these bytes (PNG, JPEG, WebP, or a BMP
@@ -59,8 +67,11 @@ DecodeResult decode_image_bytes(const uint8_t* bytes, size_t size, const DecodeO
                                 std::string* error);
 
 // "texture is WxH (2.1 GB decoded), more than the limit of N texels
-// (raise it with --limit texture-texels=N)"; bytes_per_texel: of the texture it would have made
-// (4 for RGBA8, 16 for float RGBA).
+// (raise it with --limit texture-texels=N)", or, for a texture within that
+// many texels but too long a side, "texture is WxH, a side longer than S
+// texels (the side of the limit of N texels; raise it with --limit
+// texture-texels=N)"; bytes_per_texel: of the texture it would have made (4
+// for RGBA8, 16 for float RGBA).
 std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes_per_texel,
                                  const DecodeOptions& options);
 // Throws rayform::Error "NAME: " + texture_size_message(...) when the size

@@ -77,7 +77,8 @@ bool oiio_read(const std::string& path, const char* format, const DecodeOptions&
   int w = 0, h = 0, c = 0, bits = 0;
   void* data = nullptr;
   char buf[512] = {0};
-  const int r = p.read(path.c_str(), format, options.max_texels, &w, &h, &c, &bits, &data, buf, sizeof buf);
+  const int r = p.read(path.c_str(), format, options.max_texels, max_texture_side(options), &w, &h, &c, &bits, &data,
+                       buf, sizeof buf);
   if (r == 2) check_texture_size(path, uint64_t(w), uint64_t(h), bits == 8 ? 4 : 16, options);  // throws
   if (r != 1) {
     *error = buf;

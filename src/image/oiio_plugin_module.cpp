@@ -21,8 +21,8 @@ void set_error(char* error, size_t size, const std::string& message) {
 }  // namespace
 
 namespace {
-int read_with_oiio(const char* path, const char* format, unsigned long long max_texels, int* width, int* height,
-                   int* channels, int* bits, void** pixels, char* error, size_t error_size) {
+int read_with_oiio(const char* path, const char* format, unsigned long long max_texels, unsigned long long max_side,
+                   int* width, int* height, int* channels, int* bits, void** pixels, char* error, size_t error_size) {
   // Alpha as the file stores it: OpenImageIO would premultiply unassociated
   // alpha (TGA, TIFF, ...) by default; textures take it as stb_image gave it.
   OIIO::ImageSpec config;
@@ -54,7 +54,9 @@ int read_with_oiio(const char* path, const char* format, unsigned long long max_
   bool eight = spec.format == OIIO::TypeDesc::UINT8;
   for (const OIIO::TypeDesc& t : spec.channelformats) eight = eight && t == OIIO::TypeDesc::UINT8;
   *bits = eight ? 8 : 32;
-  if ((unsigned long long)spec.width * (unsigned long long)spec.height > max_texels) return 2;
+  if ((unsigned long long)spec.width > max_side || (unsigned long long)spec.height > max_side ||
+      (unsigned long long)spec.width * (unsigned long long)spec.height > max_texels)
+    return 2;
   const size_t n = size_t(spec.width) * spec.height * spec.nchannels;
   void* data = std::malloc(n * (eight ? 1 : sizeof(float)));
   const OIIO::TypeDesc type = eight ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
@@ -77,11 +79,12 @@ __attribute__((visibility("default"))) int rayform_oiio_can_write(const char* pa
 // No exception crosses this C boundary: OpenImageIO's readers throw on some
 // broken files (a GIF whose frame asks for a vector longer than max_size).
 __attribute__((visibility("default"))) int rayform_oiio_read_as(const char* path, const char* format,
-                                                                unsigned long long max_texels, int* width, int* height,
+                                                                unsigned long long max_texels,
+                                                                unsigned long long max_side, int* width, int* height,
                                                                 int* channels, int* bits, void** pixels, char* error,
                                                                 size_t error_size) {
   try {
-    return read_with_oiio(path, format, max_texels, width, height, channels, bits, pixels, error, error_size);
+    return read_with_oiio(path, format, max_texels, max_side, width, height, channels, bits, pixels, error, error_size);
   } catch (const std::exception& e) {
     set_error(error, error_size, std::string("OpenImageIO failed: ") + e.what());
   } catch (...) {

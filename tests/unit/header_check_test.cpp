@@ -88,7 +88,10 @@ TEST(HeaderCheck, ExrValueOtherThanItsDeclaredSizeIsRefused) {
 TEST(HeaderCheck, GifScreenBeyondTheTexelLimit) {
   std::vector<uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 0x07, 0x38, 0x42, 0x50, 0, 0, 0};
   EXPECT_NE(problem(gif).find("texture is 14343x20546"), std::string::npos) << problem(gif);
-  gif[7] = 0x01;  // 263 x 20546
+  gif[7] = 0x01;  // 263 x 20546: few enough texels, but a side longer than 16384
+  EXPECT_NE(problem(gif).find("texture is 263x20546, a side longer than 16384 texels"), std::string::npos)
+      << problem(gif);
+  gif[8] = 0x00, gif[9] = 0x40;  // 263 x 16384
   EXPECT_EQ(problem(gif), "");
   const std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 13, 10, 26, 10};
   EXPECT_EQ(problem(png), "");  // not a format checked here
