@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 
@@ -62,7 +63,9 @@ int64_t exr_value_bytes(const std::string& type, const uint8_t* head, size_t siz
   }
   if (type == "preview") {
     if (at + 8 > size) return -2;
-    return 8 + 4 * int64_t(le32(head + at)) * int64_t(le32(head + at + 4));
+    const uint64_t texels = uint64_t(le32(head + at)) * le32(head + at + 4);  // < 2^64
+    constexpr uint64_t most = (uint64_t(INT64_MAX) - 8) / 4;  // more never matches a declared int32 anyway
+    return texels > most ? INT64_MAX : int64_t(8 + 4 * texels);
   }
   return -1;
 }
@@ -95,7 +98,9 @@ std::string exr_problem(const uint8_t* head, size_t size, uint64_t file_bytes, c
     if (value_bytes == -2) return "";  // the header goes on past what was read
     if (value_bytes >= 0 && uint64_t(value_bytes) != bytes)
       return "EXR attribute '" + name + "' of type " + type + " declares " + std::to_string(bytes) +
-             " bytes but its value takes " + std::to_string(value_bytes);
+             " bytes but its value takes " +
+             (uint64_t(value_bytes) > file_bytes ? "more than the " + std::to_string(file_bytes) + " bytes of the file"
+                                                 : std::to_string(value_bytes));
     if (name == "dataWindow" && type == "box2i" && bytes == 16 && at + 16 <= size) {
       const int64_t x0 = int32_t(le32(head + at)), y0 = int32_t(le32(head + at + 4)), x1 = int32_t(le32(head + at + 8)),
                     y1 = int32_t(le32(head + at + 12));

@@ -85,6 +85,29 @@ TEST(HeaderCheck, ExrValueOtherThanItsDeclaredSizeIsRefused) {
   EXPECT_EQ(problem(box), "EXR attribute 'dataWindow' of type box2i declares 12 bytes but its value takes 16");
 }
 
+// A preview's size comes from its width and height: 2^32-1 squared times 4
+// overflowed the sum (UBSan; found by the fuzzer).
+TEST(HeaderCheck, ExrPreviewOfAnySizeIsMeasuredWithoutOverflow) {
+  auto with_preview = [](uint32_t w, uint32_t h, int32_t declared) {
+    std::vector<uint8_t> b = {0x76, 0x2f, 0x31, 0x01};
+    put32(b, 2);
+    put_text(b, "preview");
+    put_text(b, "preview");
+    put32(b, declared);
+    put32(b, int32_t(w));
+    put32(b, int32_t(h));
+    b.insert(b.end(), size_t(declared > 8 ? declared - 8 : 0), 0x7f);
+    b.push_back(0);  // end of header
+    return b;
+  };
+  EXPECT_EQ(problem(with_preview(2, 3, 32)), "");  // 8 + 2 x 3 x 4
+  EXPECT_EQ(problem(with_preview(2, 3, 20)),
+            "EXR attribute 'preview' of type preview declares 20 bytes but its value takes 32");
+  EXPECT_EQ(problem(with_preview(0xFFFFFFFFu, 0xFFFFFFFFu, 16)),
+            "EXR attribute 'preview' of type preview declares 16 bytes but its value takes more than the 45 bytes of "
+            "the file");
+}
+
 TEST(HeaderCheck, GifScreenBeyondTheTexelLimit) {
   std::vector<uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 0x07, 0x38, 0x42, 0x50, 0, 0, 0};
   EXPECT_NE(problem(gif).find("texture is 14343x20546"), std::string::npos) << problem(gif);
