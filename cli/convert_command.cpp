@@ -2,6 +2,7 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "messages.h"
 #include "read_flags.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
@@ -45,7 +46,7 @@ void run_convert(const ConvertArgs& a) {
   LoadOptions lo{dialect_from_string(a.dialect)};
   apply_read_flags(a.read, lo);
   LoadedScene loaded = load_scene(a.input, lo);
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : loaded.warnings) warn(w);
 
   SaveOptions o = a.save;
   o.shape_extras = !a.tessellate_only;
@@ -73,7 +74,7 @@ void run_convert(const ConvertArgs& a) {
     if (!t.path.empty() && !lies_within_folder(t.path, folder)) external.insert(t.path);
   for (const std::string& f : external)
     messages.push_back("copied " + f + ", from outside the input's folder, into the output");
-  for (const std::string& m : messages) std::cerr << "note: " << m << "\n";
+  for (const std::string& m : messages) note(m);
   if (a.stats) {
     std::cout << "read: " << a.input << ": " << counts(loaded.scene) << "\n";
     std::cout << "wrote: " << a.output << ": stored triangles " << r.stored_triangles << ", files " << r.files.size()

@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "messages.h"
 #include "read_flags.h"
 #include "scene/scene_stats.h"
 
@@ -22,7 +23,7 @@ void add_info_command(CLI::App& app) {
     LoadOptions lo{dialect_from_string(a->dialect)};
     apply_read_flags(a->read, lo);
     LoadedScene loaded = load_scene(a->scene, lo);
-    for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+    for (const std::string& w : loaded.warnings) warn(w);
     std::cout << "scene:       " << a->scene << "\n";
     if (loaded.format == SceneFormat::course_txt)
       std::cout << "format:      course .txt, dialect " << (loaded.dialect == CourseDialect::v2019 ? "2019" : "2012")

@@ -147,7 +147,6 @@ void add_render_command(CLI::App& app) {
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
-  render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
   render->callback([a, camera, orbit] {
     parse_size(a->size, &a->job.render.width, &a->job.render.height);
@@ -174,6 +173,7 @@ void add_render_command(CLI::App& app) {
     apply_read_flags(a->read, read);
     a->job.limits = read.limits;
     a->job.access = read.access;
+    a->job.quiet = a->read.quiet;
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);

@@ -1,5 +1,7 @@
 #include "render_job.h"
 
+#include "messages.h"
+
 #include "progress.h"
 #include "render/aov_images.h"
 #include "render/prepared_scene.h"
@@ -41,7 +43,7 @@ void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
     scene.cameras.clear();
     add_default_camera(scene);
   } else if (asset && add_default_camera(scene)) {
-    std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
+    note(job.input + " has no camera: added one framing the scene's bounds");
   }
   if (!(job.look_from || job.look_at || job.up || job.fov)) return;
   const int camera = job.render.camera;
@@ -92,6 +94,7 @@ void check_render_job_memory(const RenderJob& job) {
 }
 
 void run_render_job(const RenderJob& job) {
+  set_quiet(job.quiet);
   check_output_path(job.output, "colour");
   if (job.depth) {
     check_output_path(job.depth->file, "depth");
@@ -122,14 +125,14 @@ void run_render_job(const RenderJob& job) {
   lo.limits = job.limits;
   lo.access = job.access;
   LoadedScene loaded = load_scene(job.input, lo);
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : loaded.warnings) warn(w);
   // Asset files often carry neither camera nor light (a course scene always has
   // a camera, and without lights its ambient light is white).
   // The head-light follows the camera rendered, as the overrides left it.
   const bool asset = loaded.format != SceneFormat::course_txt;
   set_up_camera(job, loaded.scene, asset);
   if (asset && add_headlight(loaded.scene, job.render.camera))
-    std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
+    note(job.input + " has no light: added a head-light along the camera");
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
   auto t_prepare = clock::now();
