@@ -2,8 +2,10 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "course_args.h"
 #include "messages.h"
 #include "read_flags.h"
+#include "render_job.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
 #include "scene/scene_stats.h"
@@ -41,8 +43,13 @@ std::string counts(const Scene& scene) {
 void run_convert(const ConvertArgs& a) {
   std::error_code ec;
   if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
-    throw Error(a.output + ": the output is the input file; choose another name");
-  scene_format_from_path(a.output);  // unknown output extension: fail before reading
+    throw UsageError(a.output + ": the output is the input file; choose another name");
+  try {
+    scene_format_from_path(a.output);  // unknown output extension: fail before reading
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  check_output_folder(a.output, "the scene");
   LoadOptions lo{dialect_from_string(a.dialect)};
   apply_read_flags(a.read, lo);
   LoadedScene loaded = load_scene(a.input, lo);
@@ -88,7 +95,7 @@ void run_convert(const ConvertArgs& a) {
 void add_convert_command(CLI::App& app) {
   auto a = std::make_shared<ConvertArgs>();
   CLI::App* c = app.add_subcommand("convert", "Convert a scene between course .txt, OBJ+MTL, .gltf and .glb");
-  c->add_option("input", a->input, "Scene to read (.txt, .obj, .gltf, .glb)")->required()->check(CLI::ExistingFile);
+  c->add_option("input", a->input, "Scene to read (.txt, .obj, .gltf, .glb)")->required();
   c->add_option("output", a->output, "Scene to write (.txt, .obj, .gltf, .glb; the extension decides)")->required();
   c->add_flag("--flatten", a->save.flatten, "Bake every transform into the geometry (one flat list of shapes)");
   c->add_flag("--embed", a->save.embed, "glTF: buffers and images inside the .gltf (a .glb always holds them)");
