@@ -4,6 +4,7 @@
 #include "course_args.h"
 #include "render_job.h"
 #include "scene/error.h"
+#include "image/interrupt_cleanup.h"
 
 #include <CLI/CLI.hpp>
 
@@ -40,6 +41,8 @@ Exit status:
 )";
 
 int run(int argc, char** argv) {
+  // Ctrl-C: temporaries removed, a progress line ended, then this line.
+  set_interrupt_message("rayform: interrupted");
   std::vector<std::string> args(argv + 1, argv + argc);
   if (is_course_command_line(args)) {
     run_render_job(parse_course_command_line(args));
