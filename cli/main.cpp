@@ -60,8 +60,15 @@ int run(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    // `rayform --help` lists every subcommand's options; `rayform render --help` one's.
+    if (app.get_subcommands().empty()) {
+      std::cout << app.help("", CLI::AppFormatMode::All);
+      return 0;
+    }
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    if (e.get_exit_code() == 0) return app.exit(e);  // --version
     // CLI11's own exit codes (105-109) become the usage status 2.
     throw UsageError(e.what());
   }
