@@ -25,6 +25,7 @@ struct ConvertArgs {
   SaveOptions save;
   bool tessellate_only = false;
   bool stats = false;
+  bool out_dir_given = false;
   ReadFlags read;
 };
 
@@ -40,6 +41,19 @@ std::string counts(const Scene& scene) {
          std::to_string(s.textures) + ", lights " + std::to_string(s.lights) + ", cameras " + std::to_string(s.cameras);
 }
 
+// --out-dir DIR: an existing folder, for an output that has side files.
+void check_out_dir(const ConvertArgs& a) {
+  const std::string& dir = a.save.side_folder;
+  if (!a.out_dir_given) return;
+  std::error_code ec;
+  if (dir.empty()) throw UsageError("--out-dir expects a folder, got ''");
+  if (!fs::is_directory(dir, ec)) throw UsageError("--out-dir: folder '" + dir + "' does not exist");
+  const std::string ext = lower_extension(a.output);
+  if (ext == ".glb") throw UsageError("--out-dir: a .glb holds everything in one file: there are no side files");
+  if (ext == ".gltf" && a.save.embed)
+    throw UsageError("--out-dir: with --embed the .gltf holds everything: there are no side files");
+}
+
 void run_convert(const ConvertArgs& a) {
   std::error_code ec;
   if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
@@ -50,6 +64,7 @@ void run_convert(const ConvertArgs& a) {
     throw UsageError(e.what());
   }
   check_output_folder(a.output, "the scene");
+  check_out_dir(a);
   LoadOptions lo{dialect_from_string(a.dialect)};
   apply_read_flags(a.read, lo);
   LoadedScene loaded = load_scene(a.input, lo);
@@ -106,6 +121,10 @@ void add_convert_command(CLI::App& app) {
       ->check(CLI::IsMember({"2012", "2019"}));
   c->add_flag("--tessellate-only", a->tessellate_only,
               "glTF: spheres and planes as meshes only, without their exact form in extras");
+  CLI::Option* out_dir = c->add_option("--out-dir", a->save.side_folder,
+                                       "Folder (existing) for the side files: meshes, textures, .mtl, .bin (default: "
+                                       "beside the output, which names them relative to itself)")
+                             ->type_name("DIR");
   c->add_flag("--stats", a->stats, "Print the counts of the scene read and the files written on stdout");
   add_read_flags(*c, a->read);
   c->footer(R"(
@@ -113,8 +132,12 @@ Examples:
   rayform convert scene01_plane.txt scene01.glb
   rayform convert duck.obj duck.gltf --embed
   rayform convert scene01.glb scene01.txt
-  rayform convert model.gltf model.obj --flatten)");
-  c->callback([a] { run_convert(*a); });
+  rayform convert model.gltf model.obj --flatten
+  rayform convert model.glb model.txt --out-dir model_files   (meshes and textures in model_files/))");
+  c->callback([a, out_dir] {
+    a->out_dir_given = out_dir->count() > 0;
+    run_convert(*a);
+  });
 }
 
 }  // namespace rayform::cli

@@ -41,6 +41,7 @@ struct CourseWriteOptions {
   // maps, a raw camera up vector that is not orthonormal, or meshes whose
   // normals follow the 2019 rule but not the 2012 one).
   std::optional<CourseDialect> dialect;
+  std::string side_folder;  // side files there (SaveOptions::side_folder)
 };
 
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
