@@ -2,6 +2,7 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "course_txt/course_writer.h"
 #include "course_args.h"
 #include "messages.h"
 #include "read_flags.h"
@@ -52,6 +53,9 @@ void check_out_dir(const ConvertArgs& a) {
   if (ext == ".glb") throw UsageError("--out-dir: a .glb holds everything in one file: there are no side files");
   if (ext == ".gltf" && a.save.embed)
     throw UsageError("--out-dir: with --embed the .gltf holds everything: there are no side files");
+  if (ext == ".txt")
+    if (std::string problem = course_side_folder_problem(a.output, dir); !problem.empty())
+      throw UsageError("--out-dir: " + problem);
 }
 
 void run_convert(const ConvertArgs& a) {

@@ -72,9 +72,8 @@ class CourseBuilder {
     protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
-    // The course reads a file name up to white space.
-    if (out_.side_reference("").find_first_of(" \t\r\n") != std::string::npos)
-      throw Error(path + ": cannot name files in '" + options.side_folder + "' (the path to it has white space)");
+    if (std::string problem = course_side_folder_problem(path, options.side_folder); !problem.empty())
+      throw Error(path + ": " + problem);
   }
 
   SaveResult write() {
@@ -667,6 +666,12 @@ class CourseBuilder {
 };
 
 }  // namespace
+
+std::string course_side_folder_problem(const std::string& path, const std::string& side_folder) {
+  // The course reads a file name up to white space.
+  if (OutputFiles(path, side_folder).side_reference("").find_first_of(" \t\r\n") == std::string::npos) return {};
+  return "a course .txt cannot name files in '" + side_folder + "' (the path to it from the .txt has white space)";
+}
 
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                               std::vector<std::string>* messages) {

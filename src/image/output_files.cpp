@@ -22,7 +22,8 @@ OutputFiles::OutputFiles(std::string main, std::string side_folder)
     : main_(std::move(main)), side_folder_(std::move(side_folder)) {
   if (side_folder_.empty()) return;
   std::error_code ec;
-  const fs::path from = fs::weakly_canonical(fs::absolute(fs::path(main_).parent_path(), ec), ec);
+  const fs::path main_folder = fs::path(main_).parent_path();
+  const fs::path from = fs::weakly_canonical(fs::absolute(main_folder.empty() ? fs::path(".") : main_folder, ec), ec);
   const fs::path to = fs::weakly_canonical(fs::absolute(side_folder_, ec), ec);
   const std::string rel = to.lexically_relative(from).generic_string();
   if (!rel.empty() && rel != ".") side_prefix_ = rel + "/";

@@ -67,6 +67,13 @@ grep -q '\.\./assets/model_.*\.bmp' out/model.txt || fail txt "no texture ../ass
 "$RAYFORM_BIN" render out/model.txt -o out.png --size 16x16 -q || fail txt "does not render"
 [ $failures -eq 0 ] && echo "ok   [txt] out/model.txt + assets/: $(ls assets | tr '\n' ' ')"
 
+# The output in the working folder: its side files named assets/...
+before=$failures
+"$RAYFORM_BIN" convert m.obj top.txt --out-dir assets -q || fail top "exit $?"
+grep -q 'obj_file assets/top_.*\.obj' top.txt || fail top "no obj_file assets/...: $(grep obj_file top.txt)"
+[ "$(triangles top.txt)" = "4 0" ] || fail top "reads back as '$(triangles top.txt)', not '4 0'"
+[ $failures -eq $before ] && echo "ok   [top] top.txt names assets/top_*"
+
 # OBJ: the .mtl and the texture in a subfolder, mtllib sub/m.mtl.
 before=$failures
 mkdir -p o/sub
@@ -122,6 +129,8 @@ usage empty "^rayform: --out-dir expects a folder" e3.txt --out-dir ''
 usage glb "^rayform: --out-dir: a \.glb holds everything" e4.glb --out-dir assets
 usage embed "^rayform: --out-dir: with --embed" e5.gltf --out-dir assets --embed
 usage no-value "--out-dir" e6.txt --out-dir
+mkdir -p "with space"
+usage course-space "^rayform: --out-dir: a course \.txt cannot name files in 'with space'" e7.txt --out-dir "with space"
 left=$(find . -name 'e[0-9]*' -o -name '.*tmp*')
 [ -z "$left" ] || fail usage "left behind: $left"
 

@@ -81,5 +81,23 @@ TEST(OutputFiles, WithoutCommitNothingIsLeft) {
   fs::remove_all(dir);
 }
 
+// Side files in another folder (convert --out-dir): their paths, and how the
+// main file names them, relative to its own folder with '/'.
+TEST(OutputFiles, SideFolderPathsAndReferences) {
+  const fs::path dir = test::temp_dir("output_files_side");
+  const std::string out = (dir / "out" / "model.txt").string();
+  EXPECT_EQ(OutputFiles(out).side_path("m.obj"), (dir / "out" / "m.obj").string());
+  EXPECT_EQ(OutputFiles(out).side_reference("m.obj"), "m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "assets").string()).side_path("m.obj"), (dir / "assets" / "m.obj").string());
+  EXPECT_EQ(OutputFiles(out, (dir / "assets").string()).side_reference("m.obj"), "../assets/m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out" / "sub" / "deep").string()).side_reference("m.obj"), "sub/deep/m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out").string()).side_reference("m.obj"), "m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out" / "sub" / "..").string()).side_reference("m.obj"), "m.obj");
+  // Relative paths, both from the working folder; the main file in it.
+  EXPECT_EQ(OutputFiles("model.txt", "assets").side_reference("m.obj"), "assets/m.obj");
+  EXPECT_EQ(OutputFiles("out/model.txt", "assets").side_reference("m.obj"), "../assets/m.obj");
+  EXPECT_EQ(OutputFiles("model.txt", "assets").side_path("m.obj"), "assets/m.obj");
+}
+
 }  // namespace
 }  // namespace rayform
