@@ -2,7 +2,11 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
+#include "course_txt/course_writer.h"
+#include "course_args.h"
+#include "messages.h"
 #include "read_flags.h"
+#include "render_job.h"
 #include "scene/error.h"
 #include "scene/file_extension.h"
 #include "scene/scene_stats.h"
@@ -22,6 +26,7 @@ struct ConvertArgs {
   SaveOptions save;
   bool tessellate_only = false;
   bool stats = false;
+  bool out_dir_given = false;
   ReadFlags read;
 };
 
@@ -37,15 +42,37 @@ std::string counts(const Scene& scene) {
          std::to_string(s.textures) + ", lights " + std::to_string(s.lights) + ", cameras " + std::to_string(s.cameras);
 }
 
+// --out-dir DIR: an existing folder, for an output that has side files.
+void check_out_dir(const ConvertArgs& a) {
+  const std::string& dir = a.save.side_folder;
+  if (!a.out_dir_given) return;
+  std::error_code ec;
+  if (dir.empty()) throw UsageError("--out-dir expects a folder, got ''");
+  if (!fs::is_directory(dir, ec)) throw UsageError("--out-dir: folder '" + dir + "' does not exist");
+  const std::string ext = lower_extension(a.output);
+  if (ext == ".glb") throw UsageError("--out-dir: a .glb holds everything in one file: there are no side files");
+  if (ext == ".gltf" && a.save.embed)
+    throw UsageError("--out-dir: with --embed the .gltf holds everything: there are no side files");
+  if (ext == ".txt")
+    if (std::string problem = course_side_folder_problem(a.output, dir); !problem.empty())
+      throw UsageError("--out-dir: " + problem);
+}
+
 void run_convert(const ConvertArgs& a) {
   std::error_code ec;
   if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
-    throw Error(a.output + ": the output is the input file; choose another name");
-  scene_format_from_path(a.output);  // unknown output extension: fail before reading
+    throw UsageError(a.output + ": the output is the input file; choose another name");
+  try {
+    scene_format_from_path(a.output);  // unknown output extension: fail before reading
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  check_output_folder(a.output, "the scene");
+  check_out_dir(a);
   LoadOptions lo{dialect_from_string(a.dialect)};
   apply_read_flags(a.read, lo);
   LoadedScene loaded = load_scene(a.input, lo);
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : loaded.warnings) warn(w);
 
   SaveOptions o = a.save;
   o.shape_extras = !a.tessellate_only;
@@ -73,7 +100,7 @@ void run_convert(const ConvertArgs& a) {
     if (!t.path.empty() && !lies_within_folder(t.path, folder)) external.insert(t.path);
   for (const std::string& f : external)
     messages.push_back("copied " + f + ", from outside the input's folder, into the output");
-  for (const std::string& m : messages) std::cerr << "note: " << m << "\n";
+  for (const std::string& m : messages) note(m);
   if (a.stats) {
     std::cout << "read: " << a.input << ": " << counts(loaded.scene) << "\n";
     std::cout << "wrote: " << a.output << ": stored triangles " << r.stored_triangles << ", files " << r.files.size()
@@ -87,7 +114,7 @@ void run_convert(const ConvertArgs& a) {
 void add_convert_command(CLI::App& app) {
   auto a = std::make_shared<ConvertArgs>();
   CLI::App* c = app.add_subcommand("convert", "Convert a scene between course .txt, OBJ+MTL, .gltf and .glb");
-  c->add_option("input", a->input, "Scene to read (.txt, .obj, .gltf, .glb)")->required()->check(CLI::ExistingFile);
+  c->add_option("input", a->input, "Scene to read (.txt, .obj, .gltf, .glb)")->required();
   c->add_option("output", a->output, "Scene to write (.txt, .obj, .gltf, .glb; the extension decides)")->required();
   c->add_flag("--flatten", a->save.flatten, "Bake every transform into the geometry (one flat list of shapes)");
   c->add_flag("--embed", a->save.embed, "glTF: buffers and images inside the .gltf (a .glb always holds them)");
@@ -98,6 +125,10 @@ void add_convert_command(CLI::App& app) {
       ->check(CLI::IsMember({"2012", "2019"}));
   c->add_flag("--tessellate-only", a->tessellate_only,
               "glTF: spheres and planes as meshes only, without their exact form in extras");
+  CLI::Option* out_dir = c->add_option("--out-dir", a->save.side_folder,
+                                       "Folder (existing) for the side files: meshes, textures, .mtl, .bin (default: "
+                                       "beside the output, which names them relative to itself)")
+                             ->type_name("DIR");
   c->add_flag("--stats", a->stats, "Print the counts of the scene read and the files written on stdout");
   add_read_flags(*c, a->read);
   c->footer(R"(
@@ -105,8 +136,12 @@ Examples:
   rayform convert scene01_plane.txt scene01.glb
   rayform convert duck.obj duck.gltf --embed
   rayform convert scene01.glb scene01.txt
-  rayform convert model.gltf model.obj --flatten)");
-  c->callback([a] { run_convert(*a); });
+  rayform convert model.gltf model.obj --flatten
+  rayform convert model.glb model.txt --out-dir model_files   (meshes and textures in model_files/))");
+  c->callback([a, out_dir] {
+    a->out_dir_given = out_dir->count() > 0;
+    run_convert(*a);
+  });
 }
 
 }  // namespace rayform::cli

@@ -4,6 +4,7 @@
 #include "course_args.h"
 #include "render_job.h"
 #include "scene/error.h"
+#include "image/interrupt_cleanup.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,7 +31,18 @@ Examples:
     rayform info scene.txt
 )";
 
+// The exit status of every command (README.md, "Exit status").
+const char* exit_status = R"(
+Exit status:
+  0  success
+  1  an input or render error: a scene or file that cannot be read, an output that cannot be written
+  2  a usage error: an unknown option, a missing or malformed value, options that do not combine
+     (one line on stderr names the option; nothing is written)
+)";
+
 int run(int argc, char** argv) {
+  // Ctrl-C: temporaries removed, a progress line ended, then this line.
+  set_interrupt_message("rayform: interrupted");
   std::vector<std::string> args(argv + 1, argv + argc);
   if (is_course_command_line(args)) {
     run_render_job(parse_course_command_line(args));
@@ -39,7 +51,7 @@ int run(int argc, char** argv) {
 
   CLI::App app{"rayform " RAYFORM_VERSION ": a fast and accurate ray caster for course .txt, OBJ and glTF scenes"};
   app.set_version_flag("--version", "rayform " RAYFORM_VERSION);
-  app.footer(examples);
+  app.footer(std::string(examples) + exit_status);
   app.require_subcommand(1);
 
   add_render_command(app);
@@ -48,8 +60,17 @@ int run(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
+    // `rayform --help` lists every subcommand's options; `rayform render --help` one's.
+    if (app.get_subcommands().empty()) {
+      std::cout << app.help("", CLI::AppFormatMode::All);
+      return 0;
+    }
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --version
+    // CLI11's own exit codes (105-109) become the usage status 2.
+    throw UsageError(e.what());
   }
 
   return 0;

@@ -1,31 +1,47 @@
-// Progress on stderr, only when stderr is a terminal and not silenced.
+// Progress on stderr, only when stderr is a terminal and not silenced: one
+// line, redrawn in place, with the time elapsed and an estimate of the time
+// left. An interrupted run (SIGINT, SIGTERM, SIGHUP) ends the line before its
+// message (image/interrupt_cleanup.h).
 #pragma once
 
-#include <cstdio>
+#include <chrono>
 #include <string>
-#include <unistd.h>
 
 namespace rayform::cli {
 
+// A duration for people: "0:07", "1:05" (minutes:seconds), "1:02:03" (hours
+// too); negative or non-finite values are "0:00"; fractions are rounded down.
+std::string format_duration(double seconds);
+
+// The progress line's text for `fraction` (0..1) done after `elapsed`
+// seconds: "rendering  42%  0:12 elapsed, about 0:16 left". The estimate
+// (elapsed * (1 - fraction) / fraction) is left out below 1 % done.
+std::string progress_text(const std::string& label, float fraction, double elapsed);
+
 class Progress {
  public:
-  Progress(std::string label, bool quiet) : label_(std::move(label)), enabled_(!quiet && isatty(STDERR_FILENO)) {}
+  Progress(std::string label, bool quiet);
+  ~Progress();  // ends an open line (an error is then printed on a line of its own)
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
   bool enabled() const { return enabled_; }
-  void update(float fraction) {
-    int percent = int(fraction * 100.f);
-    if (!enabled_ || percent == last_) return;
-    last_ = percent;
-    std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (enabled_ && last_ >= 0) std::fprintf(stderr, "\r%s done\n", label_.c_str());
-  }
+  // Redraws the line when the percentage changes, or a second after the last draw.
+  void update(float fraction);
+  // "rendering done in 0:12" and a newline.
+  void finish();
 
  private:
+  using clock = std::chrono::steady_clock;
+  double elapsed() const;
+  void end_line();
+
   std::string label_;
   bool enabled_;
-  int last_ = -1;
+  clock::time_point start_ = clock::now();
+  double last_draw_ = -1.0;
+  int last_percent_ = -1;
+  bool line_open_ = false;
 };
 
 }  // namespace rayform::cli

@@ -1,6 +1,7 @@
 #include "read_flags.h"
 
 #include "course_args.h"
+#include "messages.h"
 
 namespace rayform::cli {
 
@@ -15,6 +16,7 @@ void add_read_flags(CLI::App& command, ReadFlags& flags) {
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
                    "out or URIs other than data:)");
+  command.add_flag("-q,--quiet", flags.quiet, "Print nothing but errors on stderr (no progress, notes or warnings)");
 }
 
 void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
@@ -25,6 +27,7 @@ void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
       throw UsageError("--" + problem);
   }
   options.access.confine = flags.confine;
+  set_quiet(flags.quiet);
 }
 
 }  // namespace rayform::cli

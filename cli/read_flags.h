@@ -1,5 +1,6 @@
 // The flags of every command that reads a scene: --limit NAME=VALUE
-// (repeatable; scene/limits.h) and --confine (referenced_files.h).
+// (repeatable; scene/limits.h), --confine (referenced_files.h) and
+// -q/--quiet (messages.h).
 #pragma once
 
 #include "scene_io.h"
@@ -14,11 +15,13 @@ namespace rayform::cli {
 struct ReadFlags {
   std::vector<std::string> limits;  // "NAME=VALUE"
   bool confine = false;
+  bool quiet = false;
 };
 
 void add_read_flags(CLI::App& command, ReadFlags& flags);
 
-// Sets options.limits and options.access; throws UsageError for a bad --limit.
+// Sets options.limits and options.access, and the quiet state (messages.h);
+// throws UsageError for a bad --limit.
 void apply_read_flags(const ReadFlags& flags, LoadOptions& options);
 
 }  // namespace rayform::cli

@@ -141,15 +141,14 @@ void add_render_command(CLI::App& app) {
                    "Camera up vector (default: the camera's; +y, or -z/+z looking straight down/up, when that is "
                    "parallel to a new view direction)")
       ->type_name("X,Y,Z");
-  render->add_option("--fov", a->fov, "Camera opening angle in degrees");
+  CLI::Option* fov = render->add_option("--fov", a->fov, "Camera opening angle in degrees (0 < DEG < 180)");
   render->add_option("--background", a->background, "Background colour R,G,B");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
-  render->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a, camera, orbit] {
+  render->callback([a, camera, orbit, fov] {
     parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
@@ -169,11 +168,16 @@ void add_render_command(CLI::App& app) {
     if (!a->look_at.empty()) a->job.look_at = parse_vec3(a->look_at, "--look-at");
     if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
     if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
-    if (a->fov != 0.f) a->job.fov = a->fov;
+    if (fov->count() > 0) {
+      if (!(a->fov > 0.f && a->fov < 180.f))
+        throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
+      a->job.fov = a->fov;
+    }
     LoadOptions read;
     apply_read_flags(a->read, read);
     a->job.limits = read.limits;
     a->job.access = read.access;
+    a->job.quiet = a->read.quiet;
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);

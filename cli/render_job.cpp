@@ -1,5 +1,8 @@
 #include "render_job.h"
 
+#include "course_args.h"
+#include "messages.h"
+
 #include "progress.h"
 #include "render/aov_images.h"
 #include "render/prepared_scene.h"
@@ -32,8 +35,6 @@ namespace {
 // bounds; an up vector the new direction makes useless is replaced
 // (up_not_parallel), an explicit --up parallel to it is an error.
 void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
-  if (job.fov && !(*job.fov > 0.f && *job.fov < 180.f))
-    throw Error("--fov must lie strictly between 0 and 180 degrees");
   auto bounds = [&] { return scene_stats(scene, job.limits.instances).bounds; };
   if (job.orbit) {
     scene.cameras = {orbit_camera(bounds(), *job.orbit, job.fov.value_or(default_camera_fov_deg))};
@@ -41,26 +42,27 @@ void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
     scene.cameras.clear();
     add_default_camera(scene);
   } else if (asset && add_default_camera(scene)) {
-    std::cerr << "note: " << job.input << " has no camera: added one framing the scene's bounds\n";
+    note(job.input + " has no camera: added one framing the scene's bounds");
   }
   if (!(job.look_from || job.look_at || job.up || job.fov)) return;
   const int camera = job.render.camera;
   if (camera < 0 || camera >= int(scene.cameras.size()))
-    throw Error("the scene has no camera " + std::to_string(camera) + " to adjust");
+    throw UsageError("--camera " + std::to_string(camera) + ": the scene has no such camera to adjust");
   Camera& c = scene.cameras[camera];
   if (job.look_from || job.look_at) {
     const vec3 from = job.look_from.value_or(c.center);
     const vec3 target = job.look_at ? *job.look_at : framing_target(bounds());
     if (target == from)
-      throw Error(job.look_at ? "--look-at must differ from --look-from"
-                              : "--look-from is the centre of the scene's bounds, where the camera would look: "
-                                "give --look-at");
+      throw UsageError(job.look_at ? "--look-at must differ from --look-from"
+                                   : "--look-from is the centre of the scene's bounds, where the camera would look: "
+                                     "give --look-at");
     c.center = from;
     c.direction = target - from;
     if (!job.up) c.up = up_not_parallel(c.up, c.direction);
   }
   if (job.up) c.up = *job.up;
-  if (glm::length(glm::cross(c.direction, c.up)) == 0.f) throw Error("--up must not be parallel to the view direction");
+  if (glm::length(glm::cross(c.direction, c.up)) == 0.f)
+    throw UsageError("--up must not be parallel to the view direction");
   if (job.fov) c.fov_deg = *job.fov;
 }
 
@@ -70,15 +72,19 @@ void encode_srgb(Image& img) {
 
 }  // namespace
 
-void check_output_path(const std::string& path, const char* what) {
-  if (path.empty()) throw Error(std::string(what) + ": no file name given");
-  if (!is_writable_image_path(path))
-    throw Error(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
-                "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
+void check_output_folder(const std::string& path, const std::string& what) {
   fs::path dir = fs::path(path).parent_path();
   std::error_code ec;
   if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw Error(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
+    throw UsageError(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
+}
+
+void check_output_path(const std::string& path, const char* what) {
+  if (path.empty()) throw UsageError(std::string(what) + ": no file name given");
+  if (!is_writable_image_path(path))
+    throw UsageError(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
+                     "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
+  check_output_folder(path, what);
 }
 
 void check_render_job_memory(const RenderJob& job) {
@@ -92,17 +98,18 @@ void check_render_job_memory(const RenderJob& job) {
 }
 
 void run_render_job(const RenderJob& job) {
+  set_quiet(job.quiet);
   check_output_path(job.output, "colour");
   if (job.depth) {
     check_output_path(job.depth->file, "depth");
     if (!(job.depth->max > job.depth->min))
-      throw Error("depth range must have MAX > MIN, got " + std::to_string(job.depth->min) + " .. " +
-                  std::to_string(job.depth->max));
+      throw UsageError("depth range must have MAX > MIN, got " + std::to_string(job.depth->min) + " .. " +
+                       std::to_string(job.depth->max));
   }
   if (!job.normals.empty()) check_output_path(job.normals, "normals");
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
 
-  if (std::string problem = render_options_problem(job.render); !problem.empty()) throw Error(problem);
+  if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError(problem);
   check_render_job_memory(job);  // before the scene is read (render() checks it again)
   using clock = std::chrono::steady_clock;
   auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
@@ -122,14 +129,14 @@ void run_render_job(const RenderJob& job) {
   lo.limits = job.limits;
   lo.access = job.access;
   LoadedScene loaded = load_scene(job.input, lo);
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : loaded.warnings) warn(w);
   // Asset files often carry neither camera nor light (a course scene always has
   // a camera, and without lights its ambient light is white).
   // The head-light follows the camera rendered, as the overrides left it.
   const bool asset = loaded.format != SceneFormat::course_txt;
   set_up_camera(job, loaded.scene, asset);
   if (asset && add_headlight(loaded.scene, job.render.camera))
-    std::cerr << "note: " << job.input << " has no light: added a head-light along the camera\n";
+    note(job.input + " has no light: added a head-light along the camera");
   if (job.background) loaded.scene.background.color = *job.background;
   double load_s = seconds_since(t_load);
   auto t_prepare = clock::now();

@@ -51,7 +51,10 @@ void run_render_job(const RenderJob& job);
 // machine has (render_memory.h); run_render_job's first check.
 void check_render_job_memory(const RenderJob& job);
 
-// Checks an output path before any work is done (known extension, folder exists).
+// Checks an output path before any work is done (known extension, folder
+// exists); throws UsageError (exit status 2).
 void check_output_path(const std::string& path, const char* what);
+// Throws UsageError when the folder `path` is to be written in does not exist.
+void check_output_folder(const std::string& path, const std::string& what);
 
 }  // namespace rayform::cli

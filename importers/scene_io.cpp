@@ -3,6 +3,9 @@
 #include "scene/error.h"
 #include "scene/file_extension.h"
 
+#include <filesystem>
+#include <system_error>
+
 namespace rayform {
 
 SceneFormat scene_format_from_path(const std::string& path) {
@@ -14,9 +17,19 @@ SceneFormat scene_format_from_path(const std::string& path) {
 }
 
 namespace {
+// The one message of every command (render, info, convert, the course line)
+// for a scene file that is missing or a folder.
+void check_scene_file(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(st)) throw Error(path + ": cannot open scene file: no such file");
+  if (std::filesystem::is_directory(st)) throw Error(path + ": cannot open scene file: it is a folder");
+}
+
 LoadedScene read_scene(const std::string& path, const LoadOptions& options) {
   LoadedScene out;
   out.format = scene_format_from_path(path);
+  check_scene_file(path);
   switch (out.format) {
     case SceneFormat::course_txt: {
       CourseScene cs = read_course_scene(path, CourseReadOptions{options.dialect, options.access});

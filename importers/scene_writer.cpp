@@ -27,6 +27,8 @@ SaveResult save_scene(const Scene& scene, const std::string& path, const SaveOpt
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw Error(path + ": cannot write: folder '" + dir.string() + "' does not exist");
   if (fs::is_directory(path, ec)) throw Error(path + ": cannot write: it is a folder");
+  if (!options.side_folder.empty() && !fs::is_directory(options.side_folder, ec))
+    throw Error(path + ": cannot write: folder '" + options.side_folder + "' for its side files does not exist");
   if (scene.root == invalid) throw Error(path + ": the scene has no root node: nothing to write");
 
   const std::string name = fs::path(path).filename().string();
@@ -39,12 +41,14 @@ SaveResult save_scene(const Scene& scene, const std::string& path, const SaveOpt
   if (ext == ".txt") {
     CourseWriteOptions o;
     o.dialect = options.dialect;
+    o.side_folder = options.side_folder;
     return write_course_scene(*s, path, o, messages);
   }
   if (ext == ".obj") {
     ObjWriteOptions o;
     o.sphere_segments = options.sphere_segments;
     o.flattened = options.flatten;
+    o.side_folder = options.side_folder;
     return write_obj_scene(*s, path, o, messages);
   }
   GltfWriteOptions o;
@@ -52,6 +56,7 @@ SaveResult save_scene(const Scene& scene, const std::string& path, const SaveOpt
   o.embed = options.embed;
   o.sphere_segments = options.sphere_segments;
   o.shape_extras = options.shape_extras;
+  o.side_folder = options.side_folder;
   return write_gltf_scene(*s, path, o, messages);
 }
 

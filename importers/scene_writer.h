@@ -38,6 +38,10 @@ struct SaveOptions {
   // extras (rayform's reader restores them). false: meshes only, so every
   // reader, rayform's included, sees the tessellation.
   bool shape_extras = true;
+  // The folder of the side files (meshes, textures, a .mtl, a .bin), which
+  // must exist; empty: beside the output. The output names them by their path
+  // relative to its own folder (OutputFiles::side_reference).
+  std::string side_folder;
 };
 
 struct SaveResult {

@@ -68,10 +68,12 @@ class CourseBuilder {
  public:
   CourseBuilder(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                 std::vector<std::string>* messages)
-      : s_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+      : s_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
     protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
+    if (std::string problem = course_side_folder_problem(path, options.side_folder); !problem.empty())
+      throw Error(path + ": " + problem);
   }
 
   SaveResult write() {
@@ -211,15 +213,15 @@ class CourseBuilder {
         try {
           std::string ext;
           std::vector<uint8_t> bytes = texture_file(s_.textures[size_t(t)], {"png"}, &ext);
-          out_.add((fs::path(out_.beside(dir)) / (std::string(faces[i]) + ".png")).string(), std::move(bytes));
+          out_.add((fs::path(out_.side_path(dir)) / (std::string(faces[i]) + ".png")).string(), std::move(bytes));
         } catch (const Error& e) {
           note(std::string("cube map face ") + faces[i] + " cannot be read (" + e.what() + "); cube map dropped");
           ok = false;
         }
       }
       if (ok) {
-        folders_.push_back(out_.beside(dir));
-        o << "    cubeMap " << dir << "\n";
+        folders_.push_back(out_.side_path(dir));
+        o << "    cubeMap " << out_.side_reference(dir) << "\n";
       }
     }
     o << "}\n\n";
@@ -291,7 +293,8 @@ class CourseBuilder {
     try {
       std::string ext;
       std::vector<uint8_t> bytes = texture_file(t, {"bmp"}, &ext);
-      out_.add(out_.beside(file), std::move(bytes));
+      out_.add(out_.side_path(file), std::move(bytes));
+      file = out_.side_reference(file);
       if (!t.pixels.empty() && t.channels == 4) {
         for (size_t i = 3; i < t.pixels.size(); i += 4)
           if (t.pixels[i] != 255) {
@@ -409,7 +412,8 @@ class CourseBuilder {
     if (part != invalid && !m.face_materials.empty()) base += "_" + std::to_string(part);
     std::string file = unique_file(safe_file_name(stem_ + "_" + base), ".obj");
     stored_triangles_ += sub.indices.size() / 3;
-    out_.add(out_.beside(file), text);
+    out_.add(out_.side_path(file), text);
+    file = out_.side_reference(file);
     mesh_files_[key] = file;
     mesh_texts_.emplace(std::move(text), file);
     return file;
@@ -662,6 +666,12 @@ class CourseBuilder {
 };
 
 }  // namespace
+
+std::string course_side_folder_problem(const std::string& path, const std::string& side_folder) {
+  // The course reads a file name up to white space.
+  if (OutputFiles(path, side_folder).side_reference("").find_first_of(" \t\r\n") == std::string::npos) return {};
+  return "a course .txt cannot name files in '" + side_folder + "' (the path to it from the .txt has white space)";
+}
 
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                               std::vector<std::string>* messages) {

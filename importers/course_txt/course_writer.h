@@ -41,7 +41,12 @@ struct CourseWriteOptions {
   // maps, a raw camera up vector that is not orthonormal, or meshes whose
   // normals follow the 2019 rule but not the 2012 one).
   std::optional<CourseDialect> dialect;
+  std::string side_folder;  // side files there (SaveOptions::side_folder)
 };
+
+// Why a course .txt at `path` cannot name side files in `side_folder` (the
+// course reads a file name up to white space); "" when it can.
+std::string course_side_folder_problem(const std::string& path, const std::string& side_folder);
 
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                               std::vector<std::string>* messages);

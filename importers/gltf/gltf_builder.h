@@ -109,6 +109,8 @@ class GltfBuilder {
 
   // ---- gltf_write_output.cpp ----------------------------------------------------
   void check_written(const std::string& file, uint64_t bytes, bool json) const;
+  // The URI of the side file `file` (OutputFiles::side_reference, percent-encoded).
+  std::string side_uri(const std::string& file) const;
   SaveResult save();
 
   const Scene& scene_;

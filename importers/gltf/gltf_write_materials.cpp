@@ -67,8 +67,8 @@ int GltfBuilder::add_texture(int ti) {
     for (int k = 2; used_files_.count(file); ++k)
       file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
     used_files_.insert(file);
-    img.uri = file;
-    out_.add(out_.beside(file), std::move(bytes));
+    img.uri = side_uri(file);
+    out_.add(out_.side_path(file), std::move(bytes));
   }
   model_.images.push_back(std::move(img));
   tinygltf::Texture gt;

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
@@ -30,7 +31,30 @@ uint64_t glb_length(const std::string& file) {
   return uint64_t(head[8]) | uint64_t(head[9]) << 8 | uint64_t(head[10]) << 16 | uint64_t(head[11]) << 24;
 }
 
+// tinygltf writes a buffer beside the .gltf under the buffer's URI: a buffer
+// in a side folder elsewhere gets its URI here, after the write.
+void set_buffer_uri(const std::string& gltf, const std::string& uri) {
+  nlohmann::json j;
+  {
+    std::ifstream in(gltf, std::ios::binary);
+    j = nlohmann::json::parse(in, nullptr, /*allow_exceptions*/ false);
+  }
+  if (j.is_discarded()) return;  // a short file: check_written says so
+  j["buffers"][0]["uri"] = uri;
+  std::ofstream(gltf, std::ios::binary | std::ios::trunc) << j.dump(2);
+}
+
 }  // namespace
+
+std::string GltfBuilder::side_uri(const std::string& file) const {
+  static const char* hex = "0123456789ABCDEF";
+  std::string uri;
+  for (unsigned char c : out_.side_reference(file)) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') uri += char(c);
+    else uri.append(1, '%').append(1, hex[c >> 4]).append(1, hex[c & 15]);
+  }
+  return uri;
+}
 
 // A file tinygltf wrote: `bytes` long (when not 0), complete JSON (when
 // `json`), then synced; else the write failed (a full disk, most likely).
@@ -64,14 +88,16 @@ SaveResult GltfBuilder::save() {
     throw Error(path_ + ": cannot write (tinygltf failed to write '" + temp_main + "')");
   std::error_code ec;
   if (!fs::is_regular_file(temp_main, ec)) throw Error(path_ + ": cannot write (tinygltf wrote nothing)");
+  const std::string bin_name = model_.buffers.empty() ? "" : model_.buffers[0].uri;
+  if (!bin_name.empty() && out_.side_reference(bin_name) != bin_name) set_buffer_uri(temp_main, side_uri(bin_name));
   // tinygltf does not check its writes: a full disk leaves short files. Each
   // is checked for its whole length, then synced (image/checked_write.h).
   check_written(temp_main, options_.binary ? glb_length(temp_main) : 0, !options_.binary);
-  if (!model_.buffers.empty() && !model_.buffers[0].uri.empty()) {
-    std::string bin = (fs::path(dir) / model_.buffers[0].uri).string();
-    if (!fs::is_regular_file(bin, ec)) throw Error(path_ + ": cannot write the buffer file " + model_.buffers[0].uri);
+  if (!bin_name.empty()) {
+    std::string bin = (fs::path(dir) / bin_name).string();
+    if (!fs::is_regular_file(bin, ec)) throw Error(path_ + ": cannot write the buffer file " + bin_name);
     check_written(bin, model_.buffers[0].data.size(), false);
-    out_.add_written(out_.beside(model_.buffers[0].uri), bin);
+    out_.add_written(out_.side_path(bin_name), bin);
   }
   out_.add_written(path_, temp_main);
   SaveResult r;

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 GltfBuilder::GltfBuilder(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
                          std::vector<std::string>* messages)
-    : scene_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+    : scene_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
   protect_scene_inputs(scene, out_);
   name_ = fs::path(path).filename().string();
   stem_ = fs::path(path).stem().string();

@@ -38,6 +38,7 @@ struct GltfWriteOptions {
   bool embed = false;   // .gltf: buffers and images as data URIs (no .bin, no image files)
   int sphere_segments = 64;
   bool shape_extras = true;  // analytic spheres/planes/triangles in primitive extras
+  std::string side_folder;   // side files there (SaveOptions::side_folder)
 };
 
 // Writes `scene` to `path`. Messages (what glTF cannot hold, what was

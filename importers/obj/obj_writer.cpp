@@ -32,7 +32,7 @@ class ObjBuilder {
  public:
   ObjBuilder(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
              std::vector<std::string>* messages)
-      : scene_(scene), path_(path), options_(options), messages_(messages), out_(path) {
+      : scene_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
     protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
     stem_ = fs::path(path).stem().string();
@@ -51,10 +51,11 @@ class ObjBuilder {
     obj << "\n";
     const std::string mtl = safe_file_name(stem_) + ".mtl";
     for (size_t i = 0; i < scene_.materials.size(); ++i) used_materials_.insert(int(i));  // unused ones too
-    if (!used_materials_.empty()) obj << "mtllib " << mtl << "\n";
+    if (!used_materials_.empty()) obj << "mtllib " << out_.side_reference(mtl) << "\n";
     obj << body_.str();
     out_.add(path_, obj.str());
-    if (!used_materials_.empty()) out_.add(out_.beside(mtl), write_mtl());
+    // The textures are beside the .mtl, which names them.
+    if (!used_materials_.empty()) out_.add(out_.side_path(mtl), write_mtl());
     report();
     return SaveResult{out_.commit(), stored_triangles_};
   }
@@ -107,7 +108,7 @@ class ObjBuilder {
       for (int k = 2; used_files_.count(file); ++k)
         file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
       used_files_.insert(file);
-      out_.add(out_.beside(file), std::move(bytes));
+      out_.add(out_.side_path(file), std::move(bytes));
     } catch (const Error& e) {
       note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
            "); materials using it are untextured");

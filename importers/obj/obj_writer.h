@@ -26,7 +26,8 @@ namespace rayform {
 
 struct ObjWriteOptions {
   int sphere_segments = 64;
-  bool flattened = false;  // the caller flattened the scene (no message about the hierarchy)
+  bool flattened = false;   // the caller flattened the scene (no message about the hierarchy)
+  std::string side_folder;  // side files there (SaveOptions::side_folder)
 };
 
 SaveResult write_obj_scene(const Scene& scene, const std::string& path, const ObjWriteOptions& options,

@@ -1,5 +1,6 @@
 #include "image/interrupt_cleanup.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <csignal>
@@ -21,7 +22,16 @@ std::mutex slots_mutex;  // serialises track/untrack (never taken by the handler
 
 constexpr int signals[] = {SIGINT, SIGTERM, SIGHUP};
 
+// The interrupt message, written by the handler with write(2) (async-signal-safe).
+char message[257];
+std::atomic<size_t> message_length{0};
+std::atomic<bool> line_open{false};
+
 void on_signal(int sig) {
+  if (const size_t n = message_length.load(std::memory_order_acquire); n > 0) {
+    if (line_open.load()) (void)!::write(STDERR_FILENO, "\n", 1);
+    (void)!::write(STDERR_FILENO, message, n);
+  }
   for (int pass = 1; pass <= 2; ++pass)  // files first, then their folders
     for (Slot& s : slots)
       if (s.state.load(std::memory_order_acquire) == pass) pass == 1 ? ::unlink(s.path) : ::rmdir(s.path);
@@ -58,6 +68,17 @@ void track_temporary(const std::string& path, bool folder) {
       return;
     }
 }
+
+void set_interrupt_message(const std::string& text) {
+  install_handlers();
+  const size_t n = std::min(text.size(), sizeof message - 2);
+  message_length.store(0, std::memory_order_release);
+  std::memcpy(message, text.data(), n);
+  message[n] = '\n';
+  message_length.store(n + 1, std::memory_order_release);
+}
+
+void set_interrupt_line_open(bool open) { line_open.store(open); }
 
 void untrack_temporary(const std::string& path) {
   std::lock_guard lock(slots_mutex);

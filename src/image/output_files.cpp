@@ -12,12 +12,22 @@
 #include <iterator>
 #include <system_error>
 #include <utility>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace rayform {
 namespace fs = std::filesystem;
 
-OutputFiles::OutputFiles(std::string main) : main_(std::move(main)) {}
+OutputFiles::OutputFiles(std::string main, std::string side_folder)
+    : main_(std::move(main)), side_folder_(std::move(side_folder)) {
+  if (side_folder_.empty()) return;
+  std::error_code ec;
+  const fs::path main_folder = fs::path(main_).parent_path();
+  const fs::path from = fs::weakly_canonical(fs::absolute(main_folder.empty() ? fs::path(".") : main_folder, ec), ec);
+  const fs::path to = fs::weakly_canonical(fs::absolute(side_folder_, ec), ec);
+  const std::string rel = to.lexically_relative(from).generic_string();
+  if (!rel.empty() && rel != ".") side_prefix_ = rel + "/";
+}
 
 OutputFiles::~OutputFiles() {
   std::error_code ec;
@@ -31,9 +41,11 @@ OutputFiles::~OutputFiles() {
   }
 }
 
-std::string OutputFiles::beside(const std::string& file_name) const {
-  return (fs::path(main_).parent_path() / file_name).string();
+std::string OutputFiles::side_path(const std::string& file_name) const {
+  return ((side_folder_.empty() ? fs::path(main_).parent_path() : fs::path(side_folder_)) / file_name).string();
 }
+
+std::string OutputFiles::side_reference(const std::string& file_name) const { return side_prefix_ + file_name; }
 
 void OutputFiles::add(const std::string& path, std::vector<uint8_t> bytes) {
   for (Entry& e : entries_)
@@ -97,6 +109,15 @@ std::vector<uint8_t> file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
+
+// Whether `file` can be renamed into the folder of `target` (the same file system).
+bool renames_to(const std::string& file, const std::string& target) {
+  const fs::path folder = fs::path(target).parent_path();
+  struct stat a {
+  }, b{};
+  return ::stat(file.c_str(), &a) == 0 && ::stat(folder.empty() ? "." : folder.c_str(), &b) == 0 &&
+         a.st_dev == b.st_dev;
+}
 }  // namespace
 
 std::vector<std::string> OutputFiles::commit() {
@@ -114,14 +135,17 @@ std::vector<std::string> OutputFiles::commit() {
   std::stable_partition(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.path != main_; });
   std::vector<std::pair<std::string, std::string>> moves;  // temp -> final
   for (const Entry& e : entries_) {
-    if (!e.temp.empty()) {
+    if (!e.temp.empty() && renames_to(e.temp, e.path)) {
       moves.emplace_back(e.temp, e.path);
       continue;
     }
+    // A file written on another file system (a side folder elsewhere) is copied beside its place first.
+    const std::vector<uint8_t> copied = e.temp.empty() ? std::vector<uint8_t>{} : file_bytes(e.temp);
+    const std::vector<uint8_t>& bytes = e.temp.empty() ? e.bytes : copied;
     std::string tmp = temp_name_for(e.path);
     temps_.push_back(tmp);
     track_temporary(tmp);
-    if (std::string error; !write_file_checked(tmp, e.bytes.data(), e.bytes.size(), &error))
+    if (std::string error; !write_file_checked(tmp, bytes.data(), bytes.size(), &error))
       throw Error(e.path + ": cannot write (" + error + ")");
     moves.emplace_back(tmp, e.path);
   }

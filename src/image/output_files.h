@@ -13,15 +13,20 @@ namespace rayform {
 // last. On failure nothing is renamed and the temporaries are removed.
 class OutputFiles {
  public:
-  // `main` is written last; its folder must exist.
-  explicit OutputFiles(std::string main);
+  // `main` is written last; its folder must exist. Side files (a scene's
+  // meshes, textures, buffers) go to `side_folder` (it must exist), or beside
+  // the main file when it is empty.
+  explicit OutputFiles(std::string main, std::string side_folder = {});
   ~OutputFiles();
   OutputFiles(const OutputFiles&) = delete;
   OutputFiles& operator=(const OutputFiles&) = delete;
 
   const std::string& main() const { return main_; }
-  // A path for `file_name` beside the main file.
-  std::string beside(const std::string& file_name) const;
+  // The path of the side file `file_name` (in the side folder).
+  std::string side_path(const std::string& file_name) const;
+  // How the main file names the side file `file_name`: relative to the main
+  // file's folder, with '/' ("mesh.obj", "assets/mesh.obj", "../assets/mesh.obj").
+  std::string side_reference(const std::string& file_name) const;
   // Content of a file (a later add of the same path replaces it).
   void add(const std::string& path, std::vector<uint8_t> bytes);
   void add(const std::string& path, const std::string& text);
@@ -46,6 +51,8 @@ class OutputFiles {
     std::string temp;  // non-empty: already written there
   };
   std::string main_;
+  std::string side_folder_;  // empty: the main file's folder
+  std::string side_prefix_;  // side_reference's folder part: "" or "assets/"
   std::vector<Entry> entries_;
   std::vector<std::string> temps_, temp_dirs_, protected_;
 };

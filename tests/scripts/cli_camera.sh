@@ -136,11 +136,11 @@ if render frame-look-from two.txt --frame --look-from 6,4,6; then
   expect_counts frame-look-from "$tmp/frame-look-from.png" "" "r > 150" "g > 150"
 fi
 
-# An explicit --up parallel to the view stays an error (exit 1, no picture).
+# An explicit --up parallel to the view stays an error (a usage error: exit 2, no picture).
 "$RAYFORM_BIN" render "$tmp/two.txt" -o "$tmp/up.png" --look-from 0,8,0 --up 0,1,0 -q >"$tmp/up.log" 2>&1
 rc=$?
-if [ $rc -eq 1 ] && grep -q -- "--up must not be parallel" "$tmp/up.log" && [ ! -e "$tmp/up.png" ]; then
-  ok up-parallel "exit 1: $(cat "$tmp/up.log")"
+if [ $rc -eq 2 ] && grep -q -- "--up must not be parallel" "$tmp/up.log" && [ ! -e "$tmp/up.png" ]; then
+  ok up-parallel "exit 2: $(cat "$tmp/up.log")"
 else fail up-parallel "exit $rc, picture $([ -e "$tmp/up.png" ] && echo written || echo absent): $(cat "$tmp/up.log")"; fi
 
 if [ $failures -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi

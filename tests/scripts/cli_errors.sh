@@ -9,13 +9,7 @@ source "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 in="$tmp/in"; mkdir -p "$in"
 
-cat >"$in/ok.txt" <<'EOF'
-PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
-Lights { numLights 1 DirectionalLight { direction -0.3 -0.5 -1 color 0.9 0.9 0.9 } }
-Background { color 0.1 0.2 0.3 ambientLight 0.1 0.1 0.1 }
-Materials { numMaterials 1 Material { diffuseColor 0.8 0.3 0.2 } }
-Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1.5 } }
-EOF
+write_sphere_scene "$in/ok.txt"
 # Line 4, column 23: 'radius' where the third coordinate should be.
 cat >"$in/bad.txt" <<'EOF'
 PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
@@ -105,6 +99,45 @@ expect_usage_error orbit-and-look-from "^rayform: --orbit .*cannot be combined w
 expect_usage_error orbit-and-look-at "^rayform: --orbit .*cannot be combined with --look-from or --look-at$" render "$ok" -o o.png --look-at 0,0,0 --orbit 0,0
 expect_usage_error orbit-and-camera "^rayform: --orbit .*cannot be combined with --camera$" render "$ok" -o o.png --orbit 0,0 --camera 0
 expect_usage_error frame-and-camera "^rayform: --frame .*cannot be combined with --camera$" render "$ok" -o o.png --camera 1 --frame
+# One exit-status scheme (README "Exit status"): CLI11's own parse errors and
+# every bad option value are usage errors: exit 2, one line naming the option.
+expect_usage_error filter-bogus "^rayform: --filter: bogus not in" render "$ok" -o o.png --filter bogus
+expect_usage_error render-bogus-option "--bogus" render "$ok" -o o.png --bogus
+expect_usage_error no-subcommand "subcommand"
+expect_usage_error unknown-subcommand "rendr|subcommand" rendr "$ok"
+expect_usage_error render-no-scene "scene is required" render -o o.png
+expect_usage_error render-bad-camera-index "^rayform: --camera" render "$ok" -o o.png --camera 3 --fov 30
+expect_usage_error render-threads-not-a-number "--threads" render "$ok" -o o.png --threads many
+expect_usage_error fov-200 "^rayform: --fov expects degrees strictly between 0 and 180, got '200'$" render "$ok" -o o.png --fov 200
+expect_usage_error fov-0 "^rayform: --fov expects degrees strictly between 0 and 180, got '0'$" render "$ok" -o o.png --fov 0
+expect_usage_error up-parallel "^rayform: --up must not be parallel" render "$ok" -o o.png --look-from 0,8,0 --up 0,1,0
+expect_usage_error look-at-is-look-from "^rayform: --look-at must differ from --look-from$" render "$ok" -o o.png --look-from 1,2,3 --look-at 1,2,3
+expect_usage_error output-extension-render "o\.xyz" render "$ok" -o o.xyz
+expect_usage_error info-bogus-option "--bogus" info "$ok" --bogus
+expect_usage_error convert-segments "^rayform: --sphere-segments" convert "$ok" o.obj --sphere-segments 2
+expect_usage_error convert-output-extension "o\.xyz: unknown scene format" convert "$ok" o.xyz
+expect_usage_error convert-output-folder "nofolder/o\.obj.*nofolder" convert "$ok" nofolder/o.obj
+expect_usage_error convert-missing-output "output is required" convert "$ok"
+expect_usage_error course-size-zero "-size.*positive" -input "$ok" -size 0 20 -output o.png
+expect_usage_error course-unknown-option "unknown option '-bogus'" -input "$ok" -size 20 20 -output o.png -bogus
+# A scene that is missing: an input error (exit 1), worded the same by every command.
+missing_message="^rayform: error: $in/nothere\.txt: cannot open scene file: no such file$"
+for cmd in render convert info course; do
+  case $cmd in
+    render) args=(render "$in/nothere.txt" -o o.png) ;;
+    convert) args=(convert "$in/nothere.txt" o.obj) ;;
+    info) args=(info "$in/nothere.txt") ;;
+    course) args=(-input "$in/nothere.txt" -size 20 20 -output o.png) ;;
+  esac
+  expect_failure "missing-scene-$cmd" "$missing_message" "${args[@]}"
+  [ "$last_rc" -eq 1 ] || fail "missing-scene-$cmd" "exit status $last_rc, expected 1 (input error)"
+done
+mkdir -p "$in/folder.txt"
+expect_failure missing-scene-folder "^rayform: error: $in/folder\.txt: cannot open scene file: it is a folder$" convert "$in/folder.txt" o.obj
+# --help and --version succeed; --help documents the scheme.
+"$RAYFORM_BIN" --help >"$tmp/help" 2>&1 || fail help "exit status $?"
+grep -q '^Exit status:' "$tmp/help" || fail help "--help has no 'Exit status:' footer"
+"$RAYFORM_BIN" --version >/dev/null 2>&1 || fail version "exit status $?"
 # Unwritable outputs.
 expect_failure output-folder-missing "nofolder/o.png.*nofolder" -input "$ok" -size 20 20 -output nofolder/o.png
 expect_failure output-unknown-extension "o\.xyz" -input "$ok" -size 20 20 -output o.xyz

@@ -54,3 +54,14 @@ find_node_tools() {
   [ $ok = 1 ] || { echo "SKIPPED: node tools ($*) not installed and scripts/install-node-tools failed (offline?)"; exit 77; }
   export RAYFORM_NODE_TOOLS=$d
 }
+
+# Writes a small course scene to the file $1: one lit sphere, quick to render.
+write_sphere_scene() {
+  cat >"$1" <<'EOF'
+PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }
+Lights { numLights 1 DirectionalLight { direction -0.3 -0.5 -1 color 0.9 0.9 0.9 } }
+Background { color 0.1 0.2 0.3 ambientLight 0.1 0.1 0.1 }
+Materials { numMaterials 1 Material { diffuseColor 0.8 0.3 0.2 } }
+Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1.5 } }
+EOF
+}

@@ -8,7 +8,10 @@
 
 #include <csignal>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,6 +56,28 @@ TEST(InterruptCleanup, TrackedTemporariesAreRemovedOnEachSignal) {
     EXPECT_FALSE(fs::exists(inside)) << sig;
     EXPECT_FALSE(fs::exists(folder)) << sig;
     EXPECT_TRUE(fs::exists(kept)) << sig;
+  }
+}
+
+// The interrupt message goes to stderr on a line of its own: after a newline
+// when a (progress) line is open, without one otherwise.
+TEST(InterruptCleanup, MessageEndsAnOpenLineFirst) {
+  for (bool open : {true, false}) {
+    const fs::path log = test::temp_dir("interrupt_message") / (open ? "open.log" : "closed.log");
+    const int status = in_child([&] {
+      FILE* f = std::freopen(log.c_str(), "w", stderr);
+      if (!f) _exit(4);
+      set_interrupt_message("rayform: interrupted");
+      std::fputs("\rrendering  42%", stderr);
+      std::fflush(stderr);
+      set_interrupt_line_open(open);
+      std::raise(SIGINT);
+      _exit(3);
+    });
+    EXPECT_TRUE(WIFSIGNALED(status));
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, open ? "\rrendering  42%\nrayform: interrupted\n" : "\rrendering  42%rayform: interrupted\n");
   }
 }
 

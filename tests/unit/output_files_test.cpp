@@ -28,16 +28,16 @@ TEST(OutputFiles, CommitWritesEveryFileMainFirstAndLeavesNoTemporary) {
   const std::string main = (dir / "scene.gltf").string();
   {
     OutputFiles files(main);
-    EXPECT_EQ(files.beside("scene.bin"), (dir / "scene.bin").string());
+    EXPECT_EQ(files.side_path("scene.bin"), (dir / "scene.bin").string());
     files.add(main, std::string("main"));
-    files.add(files.beside("scene.bin"), std::vector<uint8_t>{1, 2, 3});
-    files.add(files.beside("tex.png"), std::string("old"));
-    files.add(files.beside("tex.png"), std::string("new"));  // replaces
+    files.add(files.side_path("scene.bin"), std::vector<uint8_t>{1, 2, 3});
+    files.add(files.side_path("tex.png"), std::string("old"));
+    files.add(files.side_path("tex.png"), std::string("new"));  // replaces
     const std::string written = files.temp_dir() + "/written";
     { std::ofstream(written, std::ios::binary) << "from a temporary"; }
-    files.add_written(files.beside("image.png"), written);
-    EXPECT_TRUE(files.has(files.beside("tex.png")));
-    EXPECT_FALSE(files.has(files.beside("other.png")));
+    files.add_written(files.side_path("image.png"), written);
+    EXPECT_TRUE(files.has(files.side_path("tex.png")));
+    EXPECT_FALSE(files.has(files.side_path("other.png")));
     std::vector<std::string> done = files.commit();
     ASSERT_EQ(done.size(), 4u);
     EXPECT_EQ(done.front(), main);
@@ -55,12 +55,12 @@ TEST(OutputFiles, AFailedWriteLeavesNoFileAndNoTemporary) {
   const std::string main = (dir / "scene.gltf").string();
   {
     OutputFiles files(main);
-    files.add(files.beside("scene.bin"), std::string("bin"));
+    files.add(files.side_path("scene.bin"), std::string("bin"));
     files.add((dir / "missing" / "tex.png").string(), std::string("png"));  // its folder does not exist
     files.add(main, std::string("main"));
     const std::string written = files.temp_dir() + "/written";
     { std::ofstream(written, std::ios::binary) << "x"; }
-    files.add_written(files.beside("image.png"), written);
+    files.add_written(files.side_path("image.png"), written);
     EXPECT_THROW(files.commit(), Error);
   }
   EXPECT_TRUE(fs::is_empty(dir)) << test::files_in(dir).size() << " file(s) left";
@@ -74,11 +74,29 @@ TEST(OutputFiles, WithoutCommitNothingIsLeft) {
     files.add(files.main(), std::string("never written"));
     const std::string written = (dir / ".out.png.partial").string();
     { std::ofstream(written, std::ios::binary) << "x"; }
-    files.add_written(files.beside("depth.png"), written);
+    files.add_written(files.side_path("depth.png"), written);
     files.temp_dir();
   }
   EXPECT_TRUE(fs::is_empty(dir));
   fs::remove_all(dir);
+}
+
+// Side files in another folder (convert --out-dir): their paths, and how the
+// main file names them, relative to its own folder with '/'.
+TEST(OutputFiles, SideFolderPathsAndReferences) {
+  const fs::path dir = test::temp_dir("output_files_side");
+  const std::string out = (dir / "out" / "model.txt").string();
+  EXPECT_EQ(OutputFiles(out).side_path("m.obj"), (dir / "out" / "m.obj").string());
+  EXPECT_EQ(OutputFiles(out).side_reference("m.obj"), "m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "assets").string()).side_path("m.obj"), (dir / "assets" / "m.obj").string());
+  EXPECT_EQ(OutputFiles(out, (dir / "assets").string()).side_reference("m.obj"), "../assets/m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out" / "sub" / "deep").string()).side_reference("m.obj"), "sub/deep/m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out").string()).side_reference("m.obj"), "m.obj");
+  EXPECT_EQ(OutputFiles(out, (dir / "out" / "sub" / "..").string()).side_reference("m.obj"), "m.obj");
+  // Relative paths, both from the working folder; the main file in it.
+  EXPECT_EQ(OutputFiles("model.txt", "assets").side_reference("m.obj"), "assets/m.obj");
+  EXPECT_EQ(OutputFiles("out/model.txt", "assets").side_reference("m.obj"), "../assets/m.obj");
+  EXPECT_EQ(OutputFiles("model.txt", "assets").side_path("m.obj"), "assets/m.obj");
 }
 
 }  // namespace
