@@ -4,9 +4,9 @@
 // agree with Embree's before anything is timed.
 #pragma once
 
-#include "accel/mesh_accel.h"
-#include "obj/obj_geometry.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/importers/obj/obj_geometry.h"
+#include "rayform/scene/procedural_mesh.h"
 
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>

@@ -3,8 +3,8 @@
 // directional and one point light, a Phong material.
 #pragma once
 
-#include "scene/procedural_mesh.h"
-#include "scene/scene.h"
+#include "rayform/scene/procedural_mesh.h"
+#include "rayform/scene/scene.h"
 
 #include <utility>
 

@@ -8,9 +8,9 @@
 #include "bench_meshes.h"
 #include "bench_scene.h"
 
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "scene_io.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/importers/scene_io.h"
 
 #include <filesystem>
 #include <optional>

@@ -6,8 +6,8 @@
 // usage: rayform_render_mesh_tool [TRIANGLES=10000000] [WIDTH=1920] [HEIGHT=1080] [THREADS=0]
 #include "bench_scene.h"
 
-#include "render/prepared_scene.h"
-#include "render/render.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
 
 #include <chrono>
 #include <cstdio>

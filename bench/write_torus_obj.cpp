@@ -4,7 +4,7 @@
 // file back gives the very same floats. Written to OUT.obj.tmp, then renamed.
 //
 // usage: rayform_write_torus_obj TRIANGLES OUT.obj
-#include "scene/procedural_mesh.h"
+#include "rayform/scene/procedural_mesh.h"
 
 #include <charconv>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // its subcommand to the app with a callback that runs it.
 #pragma once
 
-#include "scene_io.h"
+#include "rayform/importers/scene_io.h"
 
 #include <CLI/CLI.hpp>
 

@@ -2,15 +2,15 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
-#include "course_txt/course_writer.h"
+#include "rayform/importers/course_txt/course_writer.h"
 #include "course_args.h"
 #include "messages.h"
 #include "read_flags.h"
 #include "render_job.h"
-#include "scene/error.h"
-#include "scene/file_extension.h"
-#include "scene/scene_stats.h"
-#include "scene_writer.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/scene_writer.h"
 
 #include <filesystem>
 #include <iostream>

@@ -1,8 +1,8 @@
 #include "commands.h"
 #include "messages.h"
 #include "read_flags.h"
-#include "scene/scene_stats.h"
-#include "text_format.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/text_format.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,8 +3,8 @@
 #include "commands.h"
 #include "course_args.h"
 #include "render_job.h"
-#include "scene/error.h"
-#include "image/interrupt_cleanup.h"
+#include "rayform/scene/error.h"
+#include "rayform/image/interrupt_cleanup.h"
 
 #include <CLI/CLI.hpp>
 

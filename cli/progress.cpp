@@ -1,6 +1,6 @@
 #include "progress.h"
 
-#include "image/interrupt_cleanup.h"
+#include "rayform/image/interrupt_cleanup.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // -q/--quiet (messages.h).
 #pragma once
 
-#include "scene_io.h"
+#include "rayform/importers/scene_io.h"
 
 #include <CLI/CLI.hpp>
 

@@ -4,15 +4,15 @@
 #include "messages.h"
 
 #include "progress.h"
-#include "render/aov_images.h"
-#include "render/prepared_scene.h"
-#include "render/render_memory.h"
-#include "image/color.h"
-#include "image/output_files.h"
-#include "render/render.h"
-#include "scene/error.h"
-#include "scene/scene_defaults.h"
-#include "scene/scene_stats.h"
+#include "rayform/render/aov_images.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render_memory.h"
+#include "rayform/image/color.h"
+#include "rayform/image/output_files.h"
+#include "rayform/render/render.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/scene_defaults.h"
+#include "rayform/scene/scene_stats.h"
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>

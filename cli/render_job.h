@@ -2,9 +2,9 @@
 // Shared by the course-compatible flags and the `render` subcommand.
 #pragma once
 
-#include "render/render.h"
-#include "scene/scene_defaults.h"
-#include "scene_io.h"
+#include "rayform/render/render.h"
+#include "rayform/scene/scene_defaults.h"
+#include "rayform/importers/scene_io.h"
 
 #include <optional>
 #include <string>

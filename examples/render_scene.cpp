@@ -7,12 +7,12 @@
 //
 // Course scenes are written raw, as the course does; asset formats (OBJ,
 // glTF) carry linear colour, encoded as sRGB for display.
-#include "image/color.h"
-#include "image/image.h"
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "scene/error.h"
-#include "scene_io.h"
+#include "rayform/image/color.h"
+#include "rayform/image/image.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/scene/error.h"
+#include "rayform/importers/scene_io.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "referenced_files.h"
+#include "rayform/importers/referenced_files.h"
 
 #include <cctype>
 

@@ -1,7 +1,7 @@
-#include "scene_flatten.h"
+#include "rayform/importers/scene_flatten.h"
 
-#include "scene/node_walk.h"
-#include "shape_tessellation.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/importers/shape_tessellation.h"
 
 #include <cmath>
 #include <map>

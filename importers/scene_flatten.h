@@ -3,7 +3,7 @@
 // is made of (also used by the OBJ writer, which has no transforms).
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
-#include "scene_io.h"
+#include "rayform/importers/scene_io.h"
 
-#include "scene/error.h"
-#include "scene/file_extension.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
 
 #include <filesystem>
 #include <system_error>

@@ -1,12 +1,12 @@
 // One entry point over the format readers: picks the format by extension.
 #pragma once
 
-#include "course_txt/course_reader.h"
-#include "gltf/gltf_reader.h"
-#include "obj/obj_reader.h"
-#include "referenced_files.h"
-#include "scene/limits.h"
-#include "scene/scene.h"
+#include "rayform/importers/course_txt/course_reader.h"
+#include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/importers/obj/obj_reader.h"
+#include "rayform/importers/referenced_files.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/scene.h"
 
 #include <optional>
 #include <string>

@@ -1,11 +1,11 @@
-#include "scene_writer.h"
+#include "rayform/importers/scene_writer.h"
 
-#include "course_txt/course_writer.h"
-#include "gltf/gltf_writer.h"
-#include "obj/obj_writer.h"
-#include "scene/error.h"
-#include "scene/file_extension.h"
-#include "scene_flatten.h"
+#include "rayform/importers/course_txt/course_writer.h"
+#include "rayform/importers/gltf/gltf_writer.h"
+#include "rayform/importers/obj/obj_writer.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
+#include "rayform/importers/scene_flatten.h"
 
 #include <filesystem>
 #include <system_error>

@@ -10,9 +10,9 @@
 // scene_flatten.h, text_format.h, texture_files.h and image/output_files.h.
 #pragma once
 
-#include "course_txt/course_dialect.h"
-#include "image/output_files.h"
-#include "scene/scene.h"
+#include "rayform/importers/course_txt/course_dialect.h"
+#include "rayform/image/output_files.h"
+#include "rayform/scene/scene.h"
 
 #include <cstddef>
 #include <optional>

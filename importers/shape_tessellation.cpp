@@ -1,6 +1,6 @@
-#include "shape_tessellation.h"
+#include "rayform/importers/shape_tessellation.h"
 
-#include "scene/scene_stats.h"
+#include "rayform/scene/scene_stats.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 // UV spheres, planes as large quads around the scene.
 #pragma once
 
-#include "geometry/bounds.h"
-#include "scene/scene.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/scene/scene.h"
 
 namespace rayform {
 

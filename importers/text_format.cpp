@@ -1,4 +1,4 @@
-#include "text_format.h"
+#include "rayform/importers/text_format.h"
 
 #include <charconv>
 

@@ -2,7 +2,7 @@
 // messages, names safe as file names.
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 #include <set>
 #include <string>

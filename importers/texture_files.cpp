@@ -1,8 +1,8 @@
-#include "texture_files.h"
+#include "rayform/importers/texture_files.h"
 
-#include "image/image.h"
-#include "scene/error.h"
-#include "scene/file_extension.h"
+#include "rayform/image/image.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
 
 #include <stb_image_write.h>
 

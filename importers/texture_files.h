@@ -2,7 +2,7 @@
 // takes it, else its pixels encoded as PNG or BMP; names for those files.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <cstdint>
 #include <string>

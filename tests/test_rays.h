@@ -1,7 +1,7 @@
 // Rays for tests: one from its origin, direction and (tmin, tmax).
 #pragma once
 
-#include "geometry/ray.h"
+#include "rayform/geometry/ray.h"
 
 namespace rayform::test {
 

@@ -1,7 +1,7 @@
 // Scene nodes for tests built by hand.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <utility>
 #include <vector>

@@ -18,9 +18,9 @@
 // |o - c| + r instead of t, see measure()). Output: a markdown table on stdout.
 //   build: c++ -std=c++20 -O3 -DNDEBUG -I src bench/accuracy/kernel_precision.cpp -o kernel_precision
 //   usage: kernel_precision [rays per set, default 200000]
-#include "geometry/plane_intersect.h"
-#include "geometry/sphere_intersect.h"
-#include "geometry/triangle_intersect.h"
+#include "rayform/geometry/plane_intersect.h"
+#include "rayform/geometry/sphere_intersect.h"
+#include "rayform/geometry/triangle_intersect.h"
 
 #include <algorithm>
 #include <chrono>

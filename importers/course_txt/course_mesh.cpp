@@ -1,6 +1,6 @@
-#include "course_txt/course_mesh.h"
+#include "rayform/importers/course_txt/course_mesh.h"
 
-#include "obj/obj_geometry.h"
+#include "rayform/importers/obj/obj_geometry.h"
 
 #include <map>
 

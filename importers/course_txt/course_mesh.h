@@ -5,7 +5,7 @@
 // per corner, so vertices are split where one position has several uvs.
 #pragma once
 
-#include "course_txt/course_reader.h"
+#include "rayform/importers/course_txt/course_reader.h"
 
 #include <cstdint>
 #include <vector>

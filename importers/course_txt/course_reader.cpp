@@ -1,8 +1,8 @@
-#include "course_txt/course_reader.h"
+#include "rayform/importers/course_txt/course_reader.h"
 
-#include "course_txt/course_mesh.h"
-#include "course_txt/course_tokenizer.h"
-#include "scene/error.h"
+#include "rayform/importers/course_txt/course_mesh.h"
+#include "rayform/importers/course_txt/course_tokenizer.h"
+#include "rayform/scene/error.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -3,9 +3,9 @@
 // and what was expected.
 #pragma once
 
-#include "course_txt/course_dialect.h"
-#include "referenced_files.h"
-#include "scene/scene.h"
+#include "rayform/importers/course_txt/course_dialect.h"
+#include "rayform/importers/referenced_files.h"
+#include "rayform/scene/scene.h"
 
 #include <optional>
 #include <string>

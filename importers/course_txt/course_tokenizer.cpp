@@ -1,6 +1,6 @@
-#include "course_txt/course_tokenizer.h"
+#include "rayform/importers/course_txt/course_tokenizer.h"
 
-#include "scene/error.h"
+#include "rayform/scene/error.h"
 
 #include <cerrno>
 #include <cmath>

@@ -4,7 +4,7 @@
 // column (1-based) for error messages.
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 #include <string>
 #include <string_view>

@@ -1,13 +1,13 @@
-#include "course_txt/course_writer.h"
+#include "rayform/importers/course_txt/course_writer.h"
 
-#include "course_txt/course_mesh.h"
-#include "image/output_files.h"
-#include "scene_writer.h"
+#include "rayform/importers/course_txt/course_mesh.h"
+#include "rayform/image/output_files.h"
+#include "rayform/importers/scene_writer.h"
 
-#include "scene/error.h"
-#include "scene/scene_defaults.h"
-#include "text_format.h"
-#include "texture_files.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/scene_defaults.h"
+#include "rayform/importers/text_format.h"
+#include "rayform/importers/texture_files.h"
 
 #include <algorithm>
 #include <cmath>

@@ -27,8 +27,8 @@
 // Everything the course cannot hold is reported in the messages.
 #pragma once
 
-#include "course_txt/course_dialect.h"
-#include "scene_writer.h"
+#include "rayform/importers/course_txt/course_dialect.h"
+#include "rayform/importers/scene_writer.h"
 
 #include <optional>
 #include <string>

@@ -1,8 +1,8 @@
-#include "gltf/gltf_accessors.h"
+#include "rayform/importers/gltf/gltf_accessors.h"
 
-#include "gltf/gltf_compression.h"
-#include "scene/error.h"
-#include "scene/limits.h"
+#include "rayform/importers/gltf/gltf_compression.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/limits.h"
 
 #include <algorithm>
 #include <cstring>

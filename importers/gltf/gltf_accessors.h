@@ -7,7 +7,7 @@
 // (accessors[2]): 24 elements ... run past the end of bufferViews[1]".
 #pragma once
 
-#include "gltf/gltf_messages.h"
+#include "rayform/importers/gltf/gltf_messages.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

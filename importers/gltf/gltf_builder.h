@@ -10,10 +10,10 @@
 //   gltf_write_output.cpp         the files: tinygltf's write, each file checked and synced, then committed
 #pragma once
 
-#include "geometry/bounds.h"
-#include "gltf/gltf_writer.h"
-#include "image/output_files.h"
-#include "scene/scene.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/importers/gltf/gltf_writer.h"
+#include "rayform/image/output_files.h"
+#include "rayform/scene/scene.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

@@ -1,4 +1,4 @@
-#include "gltf/gltf_extras.h"
+#include "rayform/importers/gltf/gltf_extras.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

@@ -5,7 +5,7 @@
 // its Scene.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <functional>
 #include <string>

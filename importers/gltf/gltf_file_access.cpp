@@ -1,4 +1,4 @@
-#include "gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_file_access.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,7 +3,7 @@
 // model's folder, and the percent-decoding of relative URIs.
 #pragma once
 
-#include "referenced_files.h"
+#include "rayform/importers/referenced_files.h"
 
 #include <tiny_gltf.h>
 

@@ -1,8 +1,8 @@
-#include "gltf/gltf_images.h"
+#include "rayform/importers/gltf/gltf_images.h"
 
-#include "gltf/gltf_accessors.h"
-#include "gltf/gltf_messages.h"
-#include "image/image_decode.h"
+#include "rayform/importers/gltf/gltf_accessors.h"
+#include "rayform/importers/gltf/gltf_messages.h"
+#include "rayform/image/image_decode.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

@@ -11,7 +11,7 @@
 // loads, untextured there.
 #pragma once
 
-#include "image/image_decode.h"
+#include "rayform/image/image_decode.h"
 
 #include <string>
 #include <vector>

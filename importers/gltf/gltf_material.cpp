@@ -1,6 +1,6 @@
-#include "gltf/gltf_material.h"
+#include "rayform/importers/gltf/gltf_material.h"
 
-#include "scene/error.h"
+#include "rayform/scene/error.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

@@ -33,7 +33,7 @@
 // ignored and said so once. Textures of these extensions are not sampled.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "gltf/gltf_messages.h"
+#include "rayform/importers/gltf/gltf_messages.h"
 
 #include <sstream>
 

@@ -1,7 +1,7 @@
 // The glTF reader's cameras and KHR_lights_punctual lights (GltfSceneBuilder,
 // gltf_scene_builder.h), placed by the world transform of the node that names
 // them.
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <cmath>
 #include <numbers>

@@ -2,9 +2,9 @@
 // file's bytes checked before tinygltf sees them (JSON or GLB, the GLB
 // container, JSON depth), tinygltf's load with file access and image decoding
 // of our own, its warnings passed on and its failures explained.
-#include "gltf/gltf_file_access.h"
-#include "gltf/gltf_images.h"
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_images.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,9 +3,9 @@
 // gltf_material.h, base colour textures with their image source (core,
 // EXT_texture_webp, KHR_texture_basisu's fallback), sampler and
 // KHR_texture_transform.
-#include "gltf/gltf_file_access.h"
-#include "gltf/gltf_material.h"
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_material.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <cmath>
 #include <filesystem>

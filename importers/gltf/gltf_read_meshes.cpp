@@ -3,9 +3,9 @@
 // weights and skin; attributes from accessors or a KHR_draco_mesh_compression
 // stream, morph targets, linear blend skinning, and strips and fans as
 // triangle lists.
-#include "gltf/gltf_compression.h"
-#include "gltf/gltf_file_access.h"
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_compression.h"
+#include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <algorithm>
 #include <cmath>

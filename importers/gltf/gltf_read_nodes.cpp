@@ -3,7 +3,7 @@
 // transforms (matrix or T R S), the walk that turns nodes into Scene nodes
 // (meshes, EXT_mesh_gpu_instancing, cameras and lights placed), and world
 // matrices for skins.
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>

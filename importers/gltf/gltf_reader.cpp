@@ -1,10 +1,10 @@
 // read_gltf_scene: one GltfSceneBuilder (gltf_scene_builder.h) per file, and
 // its walk (build) in order; the asset version and extensions the file
 // requires checked, those it uses reported, rayform's own extras applied last.
-#include "gltf/gltf_reader.h"
+#include "rayform/importers/gltf/gltf_reader.h"
 
-#include "gltf/gltf_extras.h"
-#include "gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_extras.h"
+#include "rayform/importers/gltf/gltf_scene_builder.h"
 
 #include <algorithm>
 #include <filesystem>

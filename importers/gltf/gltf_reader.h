@@ -34,11 +34,11 @@
 // "box.gltf: meshes[2].primitives[0].indices: index 40 is out of range (the primitive has 24 vertices)".
 #pragma once
 
-#include "gltf/gltf_material.h"
-#include "image/image_decode.h"
-#include "referenced_files.h"
-#include "scene/limits.h"
-#include "scene/scene.h"
+#include "rayform/importers/gltf/gltf_material.h"
+#include "rayform/image/image_decode.h"
+#include "rayform/importers/referenced_files.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/scene.h"
 
 #include <string>
 #include <vector>

@@ -9,11 +9,11 @@
 //   gltf_read_meshes.cpp          meshes and primitives: Draco, morph targets, skins, triangles
 #pragma once
 
-#include "gltf/gltf_accessors.h"
-#include "gltf/gltf_file_access.h"
-#include "gltf/gltf_messages.h"
-#include "gltf/gltf_reader.h"
-#include "scene/error.h"
+#include "rayform/importers/gltf/gltf_accessors.h"
+#include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_messages.h"
+#include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/scene/error.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

@@ -2,8 +2,8 @@
 // gltf_builder.h): each camera and KHR_lights_punctual light on a node of its
 // own, what glTF cannot say about it in its extras; the background in the
 // scene's extras.
-#include "gltf/gltf_builder.h"
-#include "shape_tessellation.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/shape_tessellation.h"
 
 #include <glm/gtc/quaternion.hpp>
 

@@ -3,9 +3,9 @@
 // stored once by content, spheres, planes and triangles tessellated with
 // their exact form in extras, and glTF meshes shared where the same shapes
 // recur.
-#include "gltf/gltf_builder.h"
-#include "scene/error.h"
-#include "shape_tessellation.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/scene/error.h"
+#include "rayform/importers/shape_tessellation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,12 +2,12 @@
 // Phong materials as metallic-roughness (gltf_material.h) with the Phong
 // values in extras, an untextured copy for shapes without uvs, textures as
 // PNG or JPEG images (beside the file or in its buffer) with their samplers.
-#include "gltf/gltf_builder.h"
-#include "gltf/gltf_material.h"
-#include "scene/error.h"
-#include "scene/file_extension.h"
-#include "text_format.h"
-#include "texture_files.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_material.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
+#include "rayform/importers/text_format.h"
+#include "rayform/importers/texture_files.h"
 
 #include <algorithm>
 

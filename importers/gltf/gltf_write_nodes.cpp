@@ -1,8 +1,8 @@
 // The glTF writer's node tree (GltfBuilder, gltf_builder.h): one glTF node
 // per group or transform node, leading shape children gathered as its mesh;
 // a matrix that one glTF node cannot hold (a shear) split into two that can.
-#include "gltf/gltf_builder.h"
-#include "scene/error.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/scene/error.h"
 
 #include <algorithm>
 #include <cmath>

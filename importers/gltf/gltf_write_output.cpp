@@ -1,9 +1,9 @@
 // The glTF writer's output (GltfBuilder, gltf_builder.h): the model written
 // by tinygltf into a temporary folder (.gltf with its .bin, or .glb), each
 // file checked for its whole length and synced, then all renamed into place.
-#include "gltf/gltf_builder.h"
-#include "image/checked_write.h"
-#include "scene/error.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/image/checked_write.h"
+#include "rayform/scene/error.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,8 +1,8 @@
 // The glTF writer's JSON values (gltf_builder.h): floats written as the
 // double of their shortest decimal text, vectors of them, and rayform's own
 // extras under the key "rayform".
-#include "gltf/gltf_builder.h"
-#include "text_format.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/text_format.h"
 
 #include <cstdlib>
 

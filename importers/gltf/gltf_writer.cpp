@@ -2,11 +2,11 @@
 // (write) in order: materials, the node tree, cameras, lights, the scene's
 // extras; then the messages on what glTF could not hold as it was, and the
 // files.
-#include "gltf/gltf_writer.h"
+#include "rayform/importers/gltf/gltf_writer.h"
 
-#include "gltf/gltf_builder.h"
-#include "shape_tessellation.h"
-#include "text_format.h"
+#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/shape_tessellation.h"
+#include "rayform/importers/text_format.h"
 
 #include <algorithm>
 #include <filesystem>

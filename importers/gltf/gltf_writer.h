@@ -25,8 +25,8 @@
 // that other tools keep them; gltf_extras.h reads them back.
 #pragma once
 
-#include "scene/scene.h"
-#include "scene_writer.h"
+#include "rayform/scene/scene.h"
+#include "rayform/importers/scene_writer.h"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "obj/obj_geometry.h"
+#include "rayform/importers/obj/obj_geometry.h"
 
-#include "scene/error.h"
+#include "rayform/scene/error.h"
 
 #include <tiny_obj_loader.h>
 

@@ -4,7 +4,7 @@
 // own normals; the asset importer keeps or generates them).
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/obj_parallel_parse.h"
 
-#include "obj/text_stream_buffer.h"
+#include "rayform/importers/obj/text_stream_buffer.h"
 
 #include <tbb/parallel_for.h>
 

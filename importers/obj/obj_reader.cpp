@@ -1,9 +1,9 @@
-#include "obj/obj_reader.h"
+#include "rayform/importers/obj/obj_reader.h"
 
-#include "obj/obj_parallel_parse.h"
-#include "obj/text_stream_buffer.h"
+#include "rayform/importers/obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/text_stream_buffer.h"
 
-#include "scene/error.h"
+#include "rayform/scene/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -26,8 +26,8 @@
 // positions, no faces at all.
 #pragma once
 
-#include "referenced_files.h"
-#include "scene/scene.h"
+#include "rayform/importers/referenced_files.h"
+#include "rayform/scene/scene.h"
 
 #include <cstddef>
 #include <string>

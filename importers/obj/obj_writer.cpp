@@ -1,12 +1,12 @@
-#include "obj/obj_writer.h"
+#include "rayform/importers/obj/obj_writer.h"
 
-#include "image/output_files.h"
-#include "scene_writer.h"
-#include "scene/error.h"
-#include "scene_flatten.h"
-#include "shape_tessellation.h"
-#include "text_format.h"
-#include "texture_files.h"
+#include "rayform/image/output_files.h"
+#include "rayform/importers/scene_writer.h"
+#include "rayform/scene/error.h"
+#include "rayform/importers/scene_flatten.h"
+#include "rayform/importers/shape_tessellation.h"
+#include "rayform/importers/text_format.h"
+#include "rayform/importers/texture_files.h"
 
 #include <algorithm>
 #include <cmath>

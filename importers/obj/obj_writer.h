@@ -17,7 +17,7 @@
 // map_Bump. Textures are copied beside the .obj (<stem>_<name>.<ext>).
 #pragma once
 
-#include "scene_writer.h"
+#include "rayform/importers/scene_writer.h"
 
 #include <string>
 #include <vector>

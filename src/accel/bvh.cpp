@@ -1,4 +1,4 @@
-#include "accel/bvh.h"
+#include "rayform/accel/bvh.h"
 
 #include <algorithm>
 #include <numeric>

@@ -5,7 +5,7 @@
 // own 8-wide BVH (mesh_accel.h), built with the same options.
 #pragma once
 
-#include "geometry/bounds.h"
+#include "rayform/geometry/bounds.h"
 
 #include <cstdint>
 #include <span>

@@ -9,8 +9,8 @@
 // mesh_accel_traverse.cpp.
 #pragma once
 
-#include "accel/bvh.h"
-#include "geometry/triangle_intersect.h"
+#include "rayform/accel/bvh.h"
+#include "rayform/geometry/triangle_intersect.h"
 
 #include <cstdint>
 #include <span>

@@ -4,9 +4,9 @@
 // input gives the same structure whatever the number of threads (parallel
 // tasks work on disjoint ranges, reductions merge in a fixed order, and the
 // flattening offsets come from subtree totals).
-#include "accel/mesh_accel.h"
+#include "rayform/accel/mesh_accel.h"
 
-#include "accel/simd4.h"
+#include "rayform/accel/simd4.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>

@@ -10,12 +10,12 @@
 // mesh_accel_node_test.h whose NodeRay and node_hits the kernels use
 // (kernel_portable, the default, or kernel_avx2, included under
 // #pragma GCC target("avx2")); the kernels are defined in that namespace.
-#include "accel/mesh_accel.h"
-#include "accel/mesh_accel_node_test.h"
-#include "accel/mesh_accel_packet_test.h"
-#include "accel/simd4.h"
-#include "geometry/bounds.h"
-#include "geometry/ray.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/accel/mesh_accel_node_test.h"
+#include "rayform/accel/mesh_accel_packet_test.h"
+#include "rayform/accel/simd4.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/geometry/ray.h"
 
 #include <bit>
 #include <cstdint>

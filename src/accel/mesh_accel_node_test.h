@@ -8,10 +8,10 @@
 // includes it (the definitions have internal linkage).
 #pragma once
 
-#include "accel/mesh_accel.h"
-#include "accel/simd4.h"
-#include "geometry/bounds.h"
-#include "math/math.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/accel/simd4.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/math/math.h"
 
 #include <bit>
 #include <cstdint>

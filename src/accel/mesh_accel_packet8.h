@@ -12,8 +12,8 @@
 // #pragma GCC target("avx2"); the definitions are in kernel_avx2.
 #pragma once
 
-#include "accel/mesh_accel_node_test.h"
-#include "accel/mesh_accel_packet_test.h"
+#include "rayform/accel/mesh_accel_node_test.h"
+#include "rayform/accel/mesh_accel_packet_test.h"
 
 #include <immintrin.h>
 

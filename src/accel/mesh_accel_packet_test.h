@@ -6,11 +6,11 @@
 // definitions have internal linkage).
 #pragma once
 
-#include "accel/mesh_accel.h"
-#include "accel/simd4.h"
-#include "geometry/ray.h"
-#include "geometry/triangle_intersect.h"
-#include "math/math.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/accel/simd4.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/geometry/triangle_intersect.h"
+#include "rayform/math/math.h"
 
 namespace rayform {
 namespace {

@@ -4,16 +4,16 @@
 // x86 with GCC or Clang, with the AVX2 one (eight at once), which is used when
 // the CPU has AVX2 (RAYFORM_NO_AVX2=1 forces the portable kernels). Both give
 // the same results.
-#include "accel/mesh_accel.h"
+#include "rayform/accel/mesh_accel.h"
 
-#include "accel/mesh_accel_node_test.h"
+#include "rayform/accel/mesh_accel_node_test.h"
 
 #include <bit>
 #include <cstdlib>
 
 // The kernels with the portable node test: kernel_portable::intersect/occluded.
 #define RAYFORM_MESH_KERNEL_FLAVOUR kernel_portable
-#include "accel/mesh_accel_kernel.h"
+#include "rayform/accel/mesh_accel_kernel.h"
 
 // The kernels with the AVX2 node test, compiled for AVX2 as a whole:
 // kernel_avx2::intersect/occluded.
@@ -21,8 +21,8 @@
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #define RAYFORM_MESH_KERNEL_FLAVOUR kernel_avx2
-#include "accel/mesh_accel_kernel.h"
-#include "accel/mesh_accel_packet8.h"
+#include "rayform/accel/mesh_accel_kernel.h"
+#include "rayform/accel/mesh_accel_packet8.h"
 #pragma GCC pop_options
 #endif
 

@@ -1,8 +1,8 @@
 // Axis-aligned bounding box and the slab test used by the BVH traversal.
 #pragma once
 
-#include "geometry/ray.h"
-#include "math/math.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/math/math.h"
 
 #include <algorithm>
 

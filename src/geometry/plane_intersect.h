@@ -10,8 +10,8 @@
 // heights of 1e-8 |o|. A ray parallel to the plane (n.dir = 0) misses.
 #pragma once
 
-#include "geometry/ray.h"
-#include "math/math.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/math/math.h"
 
 namespace rayform {
 

@@ -2,7 +2,7 @@
 // interval [tmin, tmax] in units of |d|.
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 namespace rayform {
 

@@ -17,8 +17,8 @@
 // (no NaN is made from inf * 0).
 #pragma once
 
-#include "geometry/ray.h"
-#include "math/math.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/math/math.h"
 
 #include <cmath>
 

@@ -6,8 +6,8 @@
 // q-form. The direction need not be unit length; t is in units of |d|.
 #pragma once
 
-#include "geometry/ray.h"
-#include "math/math.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/math/math.h"
 
 namespace rayform {
 

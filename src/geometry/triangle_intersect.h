@@ -7,8 +7,8 @@
 // (tmin, tmax) and is larger than its own rounding-error bound.
 #pragma once
 
-#include "geometry/ray.h"
-#include "math/math.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/math/math.h"
 
 #include <algorithm>
 

@@ -7,7 +7,7 @@
 // are checked to lie inside the file, and only then is memory allocated.
 // Values are stb_image's: RGB from 24-bit, RGB or RGBA from 32-bit (BI_RGB
 // with an all-zero alpha channel reads as opaque), rows top first.
-#include "image/image_decoders.h"
+#include "rayform/image/image_decoders.h"
 
 #include <climits>
 

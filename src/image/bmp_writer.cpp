@@ -1,6 +1,6 @@
-#include "image/bmp_writer.h"
+#include "rayform/image/bmp_writer.h"
 
-#include "image/checked_write.h"
+#include "rayform/image/checked_write.h"
 
 #include <cstdint>
 

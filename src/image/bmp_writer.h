@@ -5,7 +5,7 @@
 // by row rather than through a call per pixel: 3 MB in ~2 ms instead of ~11.
 #pragma once
 
-#include "image/image.h"
+#include "rayform/image/image.h"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "image/checked_write.h"
+#include "rayform/image/checked_write.h"
 
 #include <cerrno>
 #include <cstring>

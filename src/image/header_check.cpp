@@ -1,4 +1,4 @@
-#include "image/header_check.h"
+#include "rayform/image/header_check.h"
 
 #include <algorithm>
 #include <cctype>

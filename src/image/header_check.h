@@ -11,7 +11,7 @@
 // aborted on a fuzzed ".tif").
 #pragma once
 
-#include "image/image_decode.h"
+#include "rayform/image/image_decode.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,12 +1,12 @@
-#include "image/image.h"
+#include "rayform/image/image.h"
 
-#include "image/header_check.h"
-#include "image/interrupt_cleanup.h"
-#include "image/oiio_plugin.h"
-#include "image/replace_file.h"
-#include "image/stb_writer.h"
-#include "scene/error.h"
-#include "scene/file_extension.h"
+#include "rayform/image/header_check.h"
+#include "rayform/image/interrupt_cleanup.h"
+#include "rayform/image/oiio_plugin.h"
+#include "rayform/image/replace_file.h"
+#include "rayform/image/stb_writer.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/file_extension.h"
 
 #include <cstring>
 #include <filesystem>

@@ -4,7 +4,7 @@
 // top row; channels are interleaved.
 #pragma once
 
-#include "image/image_decode.h"
+#include "rayform/image/image_decode.h"
 
 #include <string>
 #include <vector>

@@ -12,7 +12,7 @@
 // (oiio_plugin.h), which get the same limit. stb_image, not meant for untrusted files, decodes nothing.
 #pragma once
 
-#include "scene/limits.h"
+#include "rayform/scene/limits.h"
 
 #include <cstddef>
 #include <cstdint>

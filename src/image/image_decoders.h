@@ -7,7 +7,7 @@
 // jpeg_decoder.cpp).
 #pragma once
 
-#include "image/image_decode.h"
+#include "rayform/image/image_decode.h"
 
 #include <cstddef>
 #include <cstdint>

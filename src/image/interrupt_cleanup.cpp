@@ -1,4 +1,4 @@
-#include "image/interrupt_cleanup.h"
+#include "rayform/image/interrupt_cleanup.h"
 
 #include <algorithm>
 #include <array>

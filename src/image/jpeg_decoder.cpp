@@ -10,7 +10,7 @@
 // YCbCr conversions round differently.
 // libjpeg reports errors by longjmp: the function that calls setjmp constructs
 // every object with a destructor before it, so the jump skips none.
-#include "image/image_decoders.h"
+#include "rayform/image/image_decoders.h"
 
 #include <cstdio>  // jpeglib.h needs FILE
 #include <jerror.h>

@@ -1,9 +1,9 @@
-#include "image/oiio_plugin.h"
+#include "rayform/image/oiio_plugin.h"
 
-#include "image/checked_write.h"
+#include "rayform/image/checked_write.h"
 
-#include "image/oiio_plugin_abi.h"
-#include "scene/error.h"
+#include "rayform/image/oiio_plugin_abi.h"
+#include "rayform/scene/error.h"
 
 #include <dlfcn.h>
 

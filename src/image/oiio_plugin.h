@@ -6,8 +6,8 @@
 // ../lib/rayform relative to it, and in the build's library folder.
 #pragma once
 
-#include "image/image.h"
-#include "image/image_decode.h"
+#include "rayform/image/image.h"
+#include "rayform/image/image_decode.h"
 
 #include <string>
 

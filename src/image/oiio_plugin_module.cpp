@@ -1,7 +1,7 @@
 // librayform_oiio.so: OpenImageIO behind the C interface of oiio_plugin_abi.h.
 // Reading checks the header's dimensions against the caller's texel limit
 // before any pixel is decoded, and returns 8-bit files as 8-bit samples.
-#include "image/oiio_plugin_abi.h"
+#include "rayform/image/oiio_plugin_abi.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,9 +1,9 @@
-#include "image/output_files.h"
+#include "rayform/image/output_files.h"
 
-#include "image/checked_write.h"
-#include "image/interrupt_cleanup.h"
-#include "image/replace_file.h"
-#include "scene/error.h"
+#include "rayform/image/checked_write.h"
+#include "rayform/image/interrupt_cleanup.h"
+#include "rayform/image/replace_file.h"
+#include "rayform/scene/error.h"
 
 #include <algorithm>
 #include <atomic>

@@ -5,7 +5,7 @@
 // gamma or colour-profile conversion. libpng reports errors by longjmp: the
 // function that calls setjmp constructs every object with a destructor before
 // it, so the jump skips none.
-#include "image/image_decoders.h"
+#include "rayform/image/image_decoders.h"
 
 #include <png.h>
 

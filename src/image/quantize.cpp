@@ -1,6 +1,6 @@
-#include "image/quantize.h"
+#include "rayform/image/quantize.h"
 
-#include "image/color.h"
+#include "rayform/image/color.h"
 
 #include <bit>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "image/replace_file.h"
+#include "rayform/image/replace_file.h"
 
 #include <cerrno>
 #include <cstdio>

@@ -1,8 +1,8 @@
-#include "image/stb_writer.h"
+#include "rayform/image/stb_writer.h"
 
-#include "image/bmp_writer.h"
-#include "image/checked_write.h"
-#include "image/quantize.h"
+#include "rayform/image/bmp_writer.h"
+#include "rayform/image/checked_write.h"
+#include "rayform/image/quantize.h"
 
 #include <stb_image_write.h>
 

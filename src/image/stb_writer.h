@@ -6,7 +6,7 @@
 // loaded on first use.
 #pragma once
 
-#include "image/image.h"
+#include "rayform/image/image.h"
 
 #include <string>
 

@@ -1,7 +1,7 @@
 // WebP through libwebp, from memory, as RGBA (opaque files get alpha 255).
 // The bitstream header's dimensions (at most 16383 a side) are checked
 // against the texel limit before decoding.
-#include "image/image_decoders.h"
+#include "rayform/image/image_decoders.h"
 
 #include <webp/decode.h>
 

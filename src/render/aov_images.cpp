@@ -1,4 +1,4 @@
-#include "render/aov_images.h"
+#include "rayform/render/aov_images.h"
 
 #include <algorithm>
 #include <cmath>

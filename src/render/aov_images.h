@@ -2,7 +2,7 @@
 // conventions of the course dialects.
 #pragma once
 
-#include "render/render.h"
+#include "rayform/render/render.h"
 
 namespace rayform {
 

@@ -1,4 +1,4 @@
-#include "render/camera_rays.h"
+#include "rayform/render/camera_rays.h"
 
 #include <cmath>
 #include <numbers>

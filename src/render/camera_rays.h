@@ -4,8 +4,8 @@
 // outermost pixel centres on +-1 (the course convention).
 #pragma once
 
-#include "geometry/ray.h"
-#include "scene/scene.h"
+#include "rayform/geometry/ray.h"
+#include "rayform/scene/scene.h"
 
 namespace rayform {
 

@@ -7,7 +7,7 @@
 // and each face is sampled like a course texture (texel centres on whole numbers).
 #pragma once
 
-#include "render/texture_sampler.h"
+#include "rayform/render/texture_sampler.h"
 
 #include <cmath>
 #include <vector>

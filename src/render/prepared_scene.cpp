@@ -1,4 +1,4 @@
-#include "render/prepared_scene.h"
+#include "rayform/render/prepared_scene.h"
 
 #include <tbb/parallel_for.h>
 

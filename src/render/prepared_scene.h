@@ -4,12 +4,12 @@
 // the scene needs so the render loop can skip the rest.
 #pragma once
 
-#include "accel/bvh.h"
-#include "accel/mesh_accel.h"
-#include "render/texture_sampler.h"
-#include "scene/limits.h"
-#include "scene/node_walk.h"
-#include "scene/scene.h"
+#include "rayform/accel/bvh.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/render/texture_sampler.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/scene/scene.h"
 
 #include <cstdint>
 #include <vector>

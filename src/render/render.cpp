@@ -1,12 +1,12 @@
-#include "render/render.h"
+#include "rayform/render/render.h"
 
-#include "geometry/ray_offset.h"
-#include "image/quantize.h"
-#include "render/camera_rays.h"
-#include "render/cube_map.h"
-#include "render/render_memory.h"
-#include "render/shade_phong.h"
-#include "scene/error.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/image/quantize.h"
+#include "rayform/render/camera_rays.h"
+#include "rayform/render/cube_map.h"
+#include "rayform/render/render_memory.h"
+#include "rayform/render/shade_phong.h"
+#include "rayform/scene/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -3,9 +3,9 @@
 // number of threads.
 #pragma once
 
-#include "image/image.h"
-#include "render/prepared_scene.h"
-#include "render/sampling.h"
+#include "rayform/image/image.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/sampling.h"
 
 #include <functional>
 #include <string>

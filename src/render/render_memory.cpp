@@ -1,4 +1,4 @@
-#include "render/render_memory.h"
+#include "rayform/render/render_memory.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -3,7 +3,7 @@
 // std::bad_alloc (or the machine swapping) after the scene was loaded.
 #pragma once
 
-#include "render/render.h"
+#include "rayform/render/render.h"
 
 #include <cstdint>
 #include <string>

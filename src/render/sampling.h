@@ -3,8 +3,8 @@
 // the thread count), and the reconstruction filters that weight them.
 #pragma once
 
-#include "math/hash.h"
-#include "math/math.h"
+#include "rayform/math/hash.h"
+#include "rayform/math/math.h"
 
 #include <cmath>
 #include <cstdint>

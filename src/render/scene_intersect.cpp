@@ -1,4 +1,4 @@
-#include "render/scene_intersect.h"
+#include "rayform/render/scene_intersect.h"
 
 namespace rayform {
 

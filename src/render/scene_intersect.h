@@ -3,10 +3,10 @@
 // virtual dispatch and no allocation per ray.
 #pragma once
 
-#include "geometry/plane_intersect.h"
-#include "geometry/ray_offset.h"
-#include "geometry/sphere_intersect.h"
-#include "render/prepared_scene.h"
+#include "rayform/geometry/plane_intersect.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/geometry/sphere_intersect.h"
+#include "rayform/render/prepared_scene.h"
 
 namespace rayform {
 

@@ -6,7 +6,7 @@
 // it multiplies it), times the vertex colour. No clamping here.
 #pragma once
 
-#include "render/scene_intersect.h"
+#include "rayform/render/scene_intersect.h"
 
 namespace rayform {
 

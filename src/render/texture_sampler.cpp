@@ -1,7 +1,7 @@
-#include "render/texture_sampler.h"
+#include "rayform/render/texture_sampler.h"
 
-#include "image/color.h"
-#include "scene/error.h"
+#include "rayform/image/color.h"
+#include "rayform/scene/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // image_decode.h under its texture-size limit.
 #pragma once
 
-#include "image/image.h"
-#include "scene/scene.h"
+#include "rayform/image/image.h"
+#include "rayform/scene/scene.h"
 
 #include <array>
 #include <cstdint>

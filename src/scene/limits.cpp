@@ -1,4 +1,4 @@
-#include "scene/limits.h"
+#include "rayform/scene/limits.h"
 
 #include <cctype>
 #include <limits>

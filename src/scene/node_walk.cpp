@@ -1,4 +1,4 @@
-#include "scene/node_walk.h"
+#include "rayform/scene/node_walk.h"
 
 #include <algorithm>
 

@@ -5,9 +5,9 @@
 // error.
 #pragma once
 
-#include "scene/error.h"
-#include "scene/limits.h"
-#include "scene/scene.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/scene.h"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "scene/procedural_mesh.h"
+#include "rayform/scene/procedural_mesh.h"
 
-#include "math/hash.h"
+#include "rayform/math/hash.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // for the stress suite and meshes of any size for the benchmarks.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <cstdint>
 

@@ -4,7 +4,7 @@
 // wrote it so that writers can reproduce it; `prepare` flattens it for rendering.
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 #include <array>
 #include <cstdint>

@@ -1,7 +1,7 @@
-#include "scene/scene_defaults.h"
+#include "rayform/scene/scene_defaults.h"
 
-#include "scene/error.h"
-#include "scene/scene_stats.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/scene_stats.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // use them (the CLI reports what it added).
 #pragma once
 
-#include "geometry/bounds.h"
-#include "scene/scene.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/scene/scene.h"
 
 #include <optional>
 #include <string>

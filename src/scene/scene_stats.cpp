@@ -1,6 +1,6 @@
-#include "scene/scene_stats.h"
+#include "rayform/scene/scene_stats.h"
 
-#include "scene/node_walk.h"
+#include "rayform/scene/node_walk.h"
 
 #include <sstream>
 

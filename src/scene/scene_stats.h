@@ -1,9 +1,9 @@
 // Counts and bounds of a scene, for `rayform info` and for framing default cameras.
 #pragma once
 
-#include "geometry/bounds.h"
-#include "scene/limits.h"
-#include "scene/scene.h"
+#include "rayform/geometry/bounds.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/scene.h"
 
 #include <string>
 

@@ -4,8 +4,8 @@
 // bad layouts, truncated, mutated and foreign streams must be an Error whose
 // message starts with the caller's `where`, never a crash (these tests also run
 // under ASan+UBSan, so they stay small).
-#include "gltf/gltf_compression.h"
-#include "scene/error.h"
+#include "rayform/importers/gltf/gltf_compression.h"
+#include "rayform/scene/error.h"
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>

@@ -1,12 +1,12 @@
 #include "fuzz_targets.h"
 
 #include "course_args.h"
-#include "image/image.h"
-#include "obj/obj_reader.h"
-#include "render/prepared_scene.h"
-#include "scene/error.h"
-#include "scene/scene_stats.h"
-#include "scene_io.h"
+#include "rayform/image/image.h"
+#include "rayform/importers/obj/obj_reader.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/scene_io.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -3,7 +3,7 @@
 // A program of its own because Draco's encoder pulls in the copy of tinygltf
 // that libdraco carries, which must not meet the glTF reader (see
 // tests/CMakeLists.txt on the compression tests).
-#include "scene/procedural_mesh.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "seed_files.h"
 
 #include <draco/compression/encode.h>

@@ -14,10 +14,10 @@
 // Input formats of the targets: docs/fuzzing.md.
 #include "fuzz_targets.h"
 #include "seed_files.h"
-#include "image/image.h"
-#include "scene/procedural_mesh.h"
-#include "scene_io.h"
-#include "scene_writer.h"
+#include "rayform/image/image.h"
+#include "rayform/scene/procedural_mesh.h"
+#include "rayform/importers/scene_io.h"
+#include "rayform/importers/scene_writer.h"
 
 #include <meshoptimizer.h>
 

@@ -3,7 +3,7 @@
 // a generated mesh.
 #pragma once
 
-#include "scene/scene.h"
+#include "rayform/scene/scene.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -3,10 +3,10 @@
 // gives each file a head-light along the camera it had before --look-from
 // applied, so its colour pictures cannot be compared; see
 // tests/scripts/asset_duck_obj_vs_gltf.sh for depth, normals and albedo).
-#include "image/color.h"
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "scene_io.h"
+#include "rayform/image/color.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/importers/scene_io.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

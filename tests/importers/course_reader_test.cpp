@@ -1,11 +1,11 @@
 // The course .txt reader (importers/course_txt): every grammar construct of
 // COURSE_FORMAT.md parsed from inline text with parse_course_scene(), and
 // every error reported as "file:line:column: <what was expected>".
-#include "course_txt/course_reader.h"
-#include "image/image.h"
-#include "render/render.h"
-#include "scene/error.h"
-#include "scene/node_walk.h"
+#include "rayform/importers/course_txt/course_reader.h"
+#include "rayform/image/image.h"
+#include "rayform/render/render.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/node_walk.h"
 #include "test_paths.h"
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -4,12 +4,12 @@
 // tests/scripts/asset_gltf_variants.sh and tests/compression),
 // EXT_mesh_gpu_instancing, morph targets, skins, EXT_texture_webp,
 // KHR_texture_basisu, KHR_materials_*, and the extension report.
-#include "gltf/gltf_reader.h"
-#include "gltf/gltf_writer.h"
-#include "render/prepared_scene.h"
-#include "scene/error.h"
-#include "scene/node_walk.h"
-#include "scene/scene_stats.h"
+#include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/importers/gltf/gltf_writer.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/scene/scene_stats.h"
 #include "test_importers.h"
 #include "test_paths.h"
 

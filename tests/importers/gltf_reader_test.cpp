@@ -1,14 +1,14 @@
 // glTF reader: shared sample assets (counts, identical .gltf/.glb/embedded
 // data, cameras, texture transforms) and glTF files written here, inline, for
 // every feature and every kind of bad input.
-#include "gltf/gltf_reader.h"
-#include "gltf/gltf_material.h"
-#include "render/prepared_scene.h"
-#include "render/shade_phong.h"
-#include "scene/error.h"
-#include "scene/node_walk.h"
-#include "scene/scene_stats.h"
-#include "scene_io.h"
+#include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/importers/gltf/gltf_material.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/shade_phong.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/scene_io.h"
 #include "test_importers.h"
 #include "test_paths.h"
 

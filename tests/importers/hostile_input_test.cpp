@@ -3,11 +3,11 @@
 // that are not trees, JSON nested too deep, files that never end (devices),
 // and --confine (referenced_files.h) for every kind of file a scene names.
 // All inputs are written here.
-#include "gltf/gltf_reader.h"
-#include "referenced_files.h"
-#include "scene/error.h"
-#include "scene_io.h"
-#include "scene_writer.h"
+#include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/importers/referenced_files.h"
+#include "rayform/scene/error.h"
+#include "rayform/importers/scene_io.h"
+#include "rayform/importers/scene_writer.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

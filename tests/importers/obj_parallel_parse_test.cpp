@@ -2,9 +2,9 @@
 // generated files with every kind of line cut into chunks of many sizes (so
 // that state lines land on chunk ends), what must fall back to the
 // whole-file parse, and every OBJ file of the shared assets.
-#include "obj/obj_parallel_parse.h"
-#include "obj/obj_reader.h"
-#include "scene/error.h"
+#include "rayform/importers/obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/obj_reader.h"
+#include "rayform/scene/error.h"
 #include "test_importers.h"
 #include "test_paths.h"
 

@@ -1,10 +1,10 @@
 // OBJ + MTL reader: shared assets (counts, materials, paths), small files of
 // our own for every rule, and the obj2gltf edge cases as a table.
-#include "obj/obj_reader.h"
-#include "scene/error.h"
-#include "scene/node_walk.h"
-#include "scene/scene_stats.h"
-#include "scene_io.h"
+#include "rayform/importers/obj/obj_reader.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/scene_io.h"
 #include "test_importers.h"
 #include "test_paths.h"
 

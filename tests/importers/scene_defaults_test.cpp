@@ -1,8 +1,8 @@
 // Default camera and headlight for scenes whose files have none.
-#include "obj/obj_reader.h"
-#include "scene/error.h"
-#include "scene/scene_defaults.h"
-#include "scene/scene_stats.h"
+#include "rayform/importers/obj/obj_reader.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/scene_defaults.h"
+#include "rayform/scene/scene_stats.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 

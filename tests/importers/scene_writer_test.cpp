@@ -3,18 +3,18 @@
 // and read back must give the same instances, matrices, materials, cameras,
 // lights and background, with analytic spheres and planes restored exactly
 // from the glTF extras; what a format cannot hold must be reported.
-#include "gltf/gltf_writer.h"
-#include "gltf/gltf_material.h"
-#include "scene/error.h"
-#include "scene/node_walk.h"
-#include "scene/scene_stats.h"
-#include "scene_io.h"
-#include "scene_writer.h"
-#include "shape_tessellation.h"
+#include "rayform/importers/gltf/gltf_writer.h"
+#include "rayform/importers/gltf/gltf_material.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/node_walk.h"
+#include "rayform/scene/scene_stats.h"
+#include "rayform/importers/scene_io.h"
+#include "rayform/importers/scene_writer.h"
+#include "rayform/importers/shape_tessellation.h"
 #include "test_importers.h"
 #include "test_paths.h"
 #include "test_scenes.h"
-#include "texture_files.h"
+#include "rayform/importers/texture_files.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>

@@ -5,14 +5,14 @@
 // reflections, which spawn secondary rays from these surfaces).
 // The fixed-epsilon habit (origin + 1e-4 * normalize(n)) runs on the same
 // hits and inputs, counting the NaN it makes.
-#include "geometry/plane_intersect.h"
-#include "geometry/ray_offset.h"
-#include "geometry/sphere_intersect.h"
-#include "geometry/triangle_intersect.h"
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "render/scene_intersect.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/geometry/plane_intersect.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/geometry/sphere_intersect.h"
+#include "rayform/geometry/triangle_intersect.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/render/scene_intersect.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "stress_common.h"
 
 #include <limits>

@@ -10,7 +10,7 @@
 // float rounding for these inputs; the final rounding to float adds one ulp.
 // The fixed-epsilon version (float, |n.dir| < 1e-6 treated as parallel,
 // t > 1e-4) is checked against the same bound.
-#include "geometry/plane_intersect.h"
+#include "rayform/geometry/plane_intersect.h"
 #include "stress_common.h"
 
 namespace rayform::stress {

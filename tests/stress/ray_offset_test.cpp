@@ -18,10 +18,10 @@
 // The fixed-epsilon policies run on the same hits: (A) origin moved 1e-4
 // along the normal, (B) origin on the hit, tmin = 1e-4 (unit directions);
 // shadow rays with origin (A) and tmax = 1 - 1e-4.
-#include "geometry/ray_offset.h"
-#include "render/prepared_scene.h"
-#include "render/scene_intersect.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/scene_intersect.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "stress_common.h"
 
 namespace rayform::stress {

@@ -38,13 +38,13 @@
 // at 1e5 .. 1e6 the float vertices of the meshes are so coarse (0.008 .. 0.06
 // against triangles 0.2 .. 0.4 across) that the face normals themselves
 // change, which is the data, not the renderer.
-#include "geometry/ray_offset.h"
-#include "render/camera_rays.h"
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "render/scene_intersect.h"
-#include "render/shade_phong.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/render/camera_rays.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/render/scene_intersect.h"
+#include "rayform/render/shade_phong.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "stress_common.h"
 
 #include <cstdio>

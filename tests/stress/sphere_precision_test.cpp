@@ -12,7 +12,7 @@
 //    the second term being the root's sensitivity to eta near tangency.
 // The textbook b^2 - 4ac form in float with a t > 1e-4 guard is checked
 // against the same bound.
-#include "geometry/sphere_intersect.h"
+#include "rayform/geometry/sphere_intersect.h"
 #include "stress_common.h"
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 // seeds, and reporting of "ours vs fixed epsilon" counts.
 #pragma once
 
-#include "math/math.h"
+#include "rayform/math/math.h"
 
 #include <gtest/gtest.h>
 #include <tbb/blocked_range.h>

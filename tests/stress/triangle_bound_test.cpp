@@ -8,8 +8,8 @@
 // z coordinates after scaling by 1/d_z, i.e. in units of t instead of scene
 // units: too small when |d| > 1. The test keeps that form to show the
 // difference, next to Möller-Trumbore with its eps = 1e-6 and t > 1e-4 guard.
-#include "geometry/ray_offset.h"
-#include "geometry/triangle_intersect.h"
+#include "rayform/geometry/ray_offset.h"
+#include "rayform/geometry/triangle_intersect.h"
 #include "stress_common.h"
 
 #include <algorithm>

@@ -13,9 +13,9 @@
 // by moving tmin) and with a plain loop of intersect_triangle over every
 // triangle; the same rays go through a Möller-Trumbore loop with the usual
 // fixed epsilons (|det| < 1e-6 culled, t > 1e-4) for comparison.
-#include "accel/mesh_accel.h"
-#include "geometry/triangle_intersect.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/geometry/triangle_intersect.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "stress_common.h"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 // (MAX - t) / (MAX - MIN), near white; 2019: (t - MIN) / (MAX - MIN) clamped,
 // near black; background black in both. 2012 normals: (|x|, |y|, |z|) on
 // black; 2019: (n + 1) / 2 on 0.5 grey.
-#include "render/aov_images.h"
+#include "rayform/render/aov_images.h"
 #include "test_scenes.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The BMP writer (src/image/bmp_writer.h) gives byte for byte the file that
 // stb_image_write's stbi_write_bmp gives, for widths with every row padding
 // (0 to 3 bytes), grey and RGB images, and reads back as the same pixels.
-#include "image/bmp_writer.h"
+#include "rayform/image/bmp_writer.h"
 #include "test_paths.h"
 
 #include <stb_image.h>

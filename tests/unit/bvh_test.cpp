@@ -2,8 +2,8 @@
 // through the BVH equals brute force over every triangle, bit for bit, on a
 // random triangle soup and on a closed icosphere; the any-hit query agrees
 // with brute force on segments; and the tree is well formed.
-#include "accel/mesh_accel.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/scene/procedural_mesh.h"
 
 #include <gtest/gtest.h>
 

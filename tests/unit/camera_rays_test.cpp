@@ -3,8 +3,8 @@
 // v = u x w (2012) or the raw up (2019); D = 1 / tan(angle / 2) in double;
 // pixel (i, j), j from the bottom: x = 2i/(W-1) - 1, y = 2j/(H-1) - 1, no
 // aspect correction; direction = normalize(x u + y v + D w), tmin = 0.
-#include "render/camera_rays.h"
-#include "render/render.h"
+#include "rayform/render/camera_rays.h"
+#include "rayform/render/render.h"
 #include "test_scenes.h"
 
 #include <gtest/gtest.h>

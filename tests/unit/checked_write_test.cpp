@@ -1,6 +1,6 @@
 // checked_write.h: bytes written whole, or a failure with the system's reason
 // (a full device is /dev/full here: every write fails with ENOSPC).
-#include "image/checked_write.h"
+#include "rayform/image/checked_write.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

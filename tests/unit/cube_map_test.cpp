@@ -1,7 +1,7 @@
 // Cube-map lookup (src/render/cube_map.h): the face chosen by the major axis
 // and the face coordinates of the course's convention, checked against the
 // table in the header written out here once more, direction by direction.
-#include "render/cube_map.h"
+#include "rayform/render/cube_map.h"
 
 #include <gtest/gtest.h>
 

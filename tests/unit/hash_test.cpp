@@ -1,7 +1,7 @@
 // Stateless pseudo-random numbers (src/math/hash.h) and the pixel sample
 // sequence built on them (src/render/sampling.h).
-#include "math/hash.h"
-#include "render/sampling.h"
+#include "rayform/math/hash.h"
+#include "rayform/render/sampling.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // attribute longer than the file, EXR data windows and GIF screens beyond the
 // texel limit); ordinary headers pass; and which OpenImageIO reader a file
 // gets (oiio_reader_for: from its signature, TGA from its name, else none).
-#include "image/header_check.h"
+#include "rayform/image/header_check.h"
 
 #include <gtest/gtest.h>
 

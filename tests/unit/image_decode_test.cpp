@@ -5,9 +5,9 @@
 // than the texel limit are refused before any pixel is allocated, including
 // the 23-byte RLE TGA that used to make a 23170x23170 texture and the short
 // RLE HDR that used to hang stb_image.
-#include "image/image.h"
-#include "image/image_decode.h"
-#include "scene/error.h"
+#include "rayform/image/image.h"
+#include "rayform/image/image_decode.h"
+#include "rayform/scene/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

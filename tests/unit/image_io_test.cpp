@@ -1,9 +1,9 @@
 // Image file I/O (src/image/image.h): 8-bit formats quantise by
 // floor(clamp(v, 0, 1) * 255) like the course reference; round trips through
 // PNG, BMP and EXR; failures throw and leave no file (nor temporary) behind.
-#include "image/image.h"
-#include "math/math.h"
-#include "scene/error.h"
+#include "rayform/image/image.h"
+#include "rayform/math/math.h"
+#include "rayform/scene/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

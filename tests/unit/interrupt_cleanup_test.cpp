@@ -1,7 +1,7 @@
 // interrupt_cleanup.h: a process stopped by SIGINT/SIGTERM/SIGHUP removes the
 // temporary files and folders it tracks, keeps what it untracked, and still
 // ends by that signal. Each case runs in a forked child.
-#include "image/interrupt_cleanup.h"
+#include "rayform/image/interrupt_cleanup.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

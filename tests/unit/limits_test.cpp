@@ -1,7 +1,7 @@
 // Limits (scene/limits.h): what --limit accepts, and the instance count of a
 // node graph measured without walking its paths (scene/node_walk.h).
-#include "scene/limits.h"
-#include "scene/node_walk.h"
+#include "rayform/scene/limits.h"
+#include "rayform/scene/node_walk.h"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // the packet path), for partial packets, and for rays through shared edges
 // and vertices, where triangles tie at equal t and the winner must not depend
 // on the order the traversal meets them in.
-#include "accel/mesh_accel.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/accel/mesh_accel.h"
+#include "rayform/scene/procedural_mesh.h"
 
 #include <gtest/gtest.h>
 

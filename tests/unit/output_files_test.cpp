@@ -1,8 +1,8 @@
 // OutputFiles (image/output_files.h): a set of files committed together, all
 // or nothing. Image writes through it are covered by image_io_test.cpp; the
 // scene writers' failures by tests/importers/scene_writer_test.cpp.
-#include "image/output_files.h"
-#include "scene/error.h"
+#include "rayform/image/output_files.h"
+#include "rayform/scene/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Ray/plane intersection (src/geometry/plane_intersect.h): the plane
 // n . p = d with n of any length, both sides, parallel rays, (tmin, tmax).
-#include "geometry/plane_intersect.h"
+#include "rayform/geometry/plane_intersect.h"
 #include "test_rays.h"
 
 #include <gtest/gtest.h>

@@ -2,10 +2,10 @@
 // instances, each used mesh built once however often it is instanced (and
 // read once by the course reader), only the textures of used materials
 // decoded, and the feature flags the render loop relies on.
-#include "course_txt/course_reader.h"
-#include "render/prepared_scene.h"
-#include "scene/error.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/importers/course_txt/course_reader.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/scene/error.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 

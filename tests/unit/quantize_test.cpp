@@ -1,10 +1,10 @@
 // 8-bit quantisation (src/image/quantize.h): the direct rule, the sRGB
 // threshold table against the direct formula, and the render loop's 8-bit
 // outputs against quantising its float output afterwards.
-#include "image/quantize.h"
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "scene_io.h"
+#include "rayform/image/quantize.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/importers/scene_io.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

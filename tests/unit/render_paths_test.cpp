@@ -4,12 +4,12 @@
 // own textured scenes and a scene with cut-outs and single-sided materials.
 // Also: single-sided materials cull back faces for camera and secondary rays,
 // and the image does not depend on the thread count or the tile size.
-#include "render/prepared_scene.h"
-#include "render/render.h"
-#include "render/scene_intersect.h"
-#include "scene/procedural_mesh.h"
-#include "scene/scene_defaults.h"
-#include "scene_io.h"
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
+#include "rayform/render/scene_intersect.h"
+#include "rayform/scene/procedural_mesh.h"
+#include "rayform/scene/scene_defaults.h"
+#include "rayform/importers/scene_io.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 

@@ -1,7 +1,7 @@
 // replace_file (src/image/replace_file.h): the new content ends up at the
 // target whether or not a file was there, nothing is left at the temporary
 // name, and targets that are not regular files behave as with rename.
-#include "image/replace_file.h"
+#include "rayform/image/replace_file.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

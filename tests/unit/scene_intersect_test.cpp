@@ -3,9 +3,9 @@
 // the inverse transpose), planes outside the BVH, closest hit across
 // instances, any-hit, and the material of each hit (including the course's
 // MaterialIndex rule).
-#include "course_txt/course_reader.h"
-#include "render/scene_intersect.h"
-#include "scene/procedural_mesh.h"
+#include "rayform/importers/course_txt/course_reader.h"
+#include "rayform/render/scene_intersect.h"
+#include "rayform/scene/procedural_mesh.h"
 #include "test_rays.h"
 #include "test_scenes.h"
 

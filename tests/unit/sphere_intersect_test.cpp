@@ -1,7 +1,7 @@
 // Ray/sphere intersection (src/geometry/sphere_intersect.h): hits, misses,
 // rays starting inside, the open interval (tmin, tmax), non-unit directions,
 // and the precision of the roots against a double-precision reference.
-#include "geometry/sphere_intersect.h"
+#include "rayform/geometry/sphere_intersect.h"
 #include "test_rays.h"
 
 #include <gtest/gtest.h>

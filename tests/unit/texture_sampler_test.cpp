@@ -2,8 +2,8 @@
 // convention: x = u W, y = (1 - v) H, bilinear between (floor x, floor y) and
 // (+1, +1) with indices clamped, i.e. texel centres on whole numbers (half a
 // texel off the usual convention); the standard convention for assets.
-#include "image/image.h"
-#include "render/texture_sampler.h"
+#include "rayform/image/image.h"
+#include "rayform/render/texture_sampler.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // hits, misses, barycentrics, (tmin, tmax), both faces, degenerate
 // triangles, and rays through an edge or a vertex shared by two or more
 // triangles, which must hit at least one of them.
-#include "geometry/triangle_intersect.h"
+#include "rayform/geometry/triangle_intersect.h"
 #include "test_rays.h"
 
 #include <gtest/gtest.h>
