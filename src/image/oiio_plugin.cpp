@@ -36,6 +36,12 @@ const Plugin& plugin() {
       candidates.push_back(exe.parent_path() / "librayform_oiio.so");
       candidates.push_back(exe.parent_path() / "../lib/rayform/librayform_oiio.so");
     }
+    // Compiled in (src/CMakeLists.txt), for programs that link the library
+    // but do not live in <prefix>/bin or the build tree: the install folder,
+    // then the build's.
+#ifdef RAYFORM_PLUGIN_INSTALL_DIR
+    candidates.push_back(fs::path(RAYFORM_PLUGIN_INSTALL_DIR) / "librayform_oiio.so");
+#endif
 #ifdef RAYFORM_PLUGIN_DIR
     candidates.push_back(fs::path(RAYFORM_PLUGIN_DIR) / "librayform_oiio.so");
 #endif

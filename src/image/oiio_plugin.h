@@ -3,7 +3,9 @@
 // does not decode in memory (tga, hdr, exr, tif, ...) or write one stb does
 // not (exr, tif, ...) pay OpenImageIO's start-up cost. The plugin
 // is looked up in $RAYFORM_OIIO_PLUGIN, beside the executable, in
-// ../lib/rayform relative to it, and in the build's library folder.
+// ../lib/rayform relative to it (the installed layout, <prefix>/bin and
+// <prefix>/lib/rayform, which the build tree mirrors), then in the install
+// folder and the build's <build>/lib/rayform, both compiled in.
 #pragma once
 
 #include "rayform/image/image.h"

@@ -1,0 +1,59 @@
+# Install rules (RAYFORM_INSTALL, on by default when rayform is the top-level
+# project). The installed layout:
+#   <prefix>/bin/rayform                           the command-line program
+#   <prefix>/lib/librayform_core.a, librayform_importers.a
+#   <prefix>/lib/rayform/librayform_oiio.so        the OpenImageIO plugin (dlopen'ed)
+#   <prefix>/include/rayform/<folder>/*.h          src/<folder>/*.h
+#   <prefix>/include/rayform/importers/...         importers/**/*.h, less the readers' internals
+#   <prefix>/lib/cmake/rayform/                    rayformConfig.cmake, rayformConfigVersion.cmake,
+#                                                  rayformTargets*.cmake, Findstb.cmake
+#   <prefix>/lib/pkgconfig/rayform.pc
+# (lib is CMAKE_INSTALL_LIBDIR: lib/<multiarch> for the prefix /usr on Debian.)
+include(CMakePackageConfigHelpers)
+
+set(RAYFORM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/rayform" CACHE STRING
+    "Where rayformConfig.cmake is installed, relative to the install prefix")
+
+install(TARGETS rayform_core rayform_importers EXPORT rayformTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS rayform_oiio LIBRARY DESTINATION ${RAYFORM_INSTALL_PLUGINDIR})
+if(TARGET rayform)
+  install(TARGETS rayform RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+
+# Headers: every header of the libraries, under the path the sources include
+# it by, except the readers' internals that include tiny_gltf.h or
+# tiny_obj_loader.h (private dependencies a consumer does not have). No
+# installed header includes them (tests/package compiles every installed
+# header with nothing but rayform::core's usage requirements).
+set(RAYFORM_PRIVATE_HEADERS gltf/gltf_accessors.h gltf/gltf_builder.h gltf/gltf_file_access.h
+                            gltf/gltf_scene_builder.h obj/obj_parallel_parse.h)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform
+        FILES_MATCHING PATTERN "*.h")
+set(_exclude "")
+foreach(_h ${RAYFORM_PRIVATE_HEADERS})
+  list(APPEND _exclude REGEX "/${_h}$" EXCLUDE)
+endforeach()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/importers/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform/importers
+        FILES_MATCHING PATTERN "*.h" ${_exclude})
+
+# The CMake package: rayform::core and rayform::importers.
+install(EXPORT rayformTargets NAMESPACE rayform:: DESTINATION ${RAYFORM_INSTALL_CMAKEDIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/rayformConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/rayformConfig.cmake
+                              INSTALL_DESTINATION ${RAYFORM_INSTALL_CMAKEDIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/rayformConfigVersion.cmake
+                                 COMPATIBILITY SameMajorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/rayformConfig.cmake ${PROJECT_BINARY_DIR}/rayformConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/Findstb.cmake
+        DESTINATION ${RAYFORM_INSTALL_CMAKEDIR})
+
+# rayform.pc, relocatable: its prefix is found from its own folder.
+set(_pc_dir "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+file(RELATIVE_PATH _pc_to_prefix "/root/${_pc_dir}" "/root")
+string(REGEX REPLACE "/$" "" _pc_to_prefix "${_pc_to_prefix}")
+set(RAYFORM_PC_PREFIX "\${pcfiledir}/${_pc_to_prefix}")
+configure_file(${PROJECT_SOURCE_DIR}/cmake/rayform.pc.in ${PROJECT_BINARY_DIR}/rayform.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/rayform.pc DESTINATION ${_pc_dir})
