@@ -1,18 +1,19 @@
 // Rendering a scene with the rayform library, the way a program embedding it
 // would: load (any supported format, by extension) -> prepare -> render ->
-// write. Build target: rayform_example_render.
+// write. Build target: rayform_example_render; tests/package builds it as
+// another project would, linking rayform::importers (README, "Library use").
 //
 //   usage: rayform_example_render SCENE OUTPUT [WIDTH HEIGHT]
 //   e.g.   rayform_example_render scenes/default.txt default.png 640 480
 //
 // Course scenes are written raw, as the course does; asset formats (OBJ,
 // glTF) carry linear colour, encoded as sRGB for display.
-#include "rayform/image/color.h"
-#include "rayform/image/image.h"
-#include "rayform/render/prepared_scene.h"
-#include "rayform/render/render.h"
-#include "rayform/scene/error.h"
-#include "rayform/importers/scene_io.h"
+#include <rayform/image/color.h>
+#include <rayform/image/image.h>
+#include <rayform/render/prepared_scene.h>
+#include <rayform/render/render.h>
+#include <rayform/scene/error.h>
+#include <rayform/importers/scene_io.h>
 
 #include <algorithm>
 #include <cstdlib>
