@@ -1,0 +1,171 @@
+# tests/package (cmake -P): rayform used by an outside project, the consumer
+# of tests/package/consumer (examples/render_scene.cpp).
+#   MODE=install       configure and build rayform's libraries, CLI and plugin
+#                      alone (no tests, benchmarks, examples), `cmake --install`
+#                      them to WORK/prefix, delete that build, then build the
+#                      consumer with find_package(rayform) and check rayform.pc
+#                      with pkg-config (flags, and a program compiled and linked
+#                      with them alone)
+#   MODE=subdirectory  build the consumer with add_subdirectory(SOURCE_DIR), no
+#                      CMAKE_CXX_STANDARD nor CMAKE_BUILD_TYPE of its own
+# Either way the consumer renders SOURCE_DIR/scenes/default.txt to a BMP that
+# must be a 64x48 picture with more than one colour, and to a TIFF, written
+# through the OpenImageIO plugin (librayform_oiio.so, dlopen'ed), that must
+# exist and not be empty.
+# Needs: SOURCE_DIR, WORK (emptied first), MODE; optional JOBS (default 2).
+foreach(v SOURCE_DIR WORK MODE)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "package_test.cmake needs -D${v}=...")
+  endif()
+endforeach()
+if(NOT DEFINED JOBS)
+  set(JOBS 2)
+endif()
+
+string(TIMESTAMP started "%s")
+# Each step's command and time in the test's output (ctest -V).
+function(run)
+  string(TIMESTAMP t0 "%s")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    list(JOIN ARGN " " cmd)
+    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}${err}")
+  endif()
+  string(TIMESTAMP t1 "%s")
+  math(EXPR dt "${t1} - ${t0}")
+  list(GET ARGN 1 what)
+  list(GET ARGN 0 program)
+  get_filename_component(program "${program}" NAME)
+  message(STATUS "${dt} s: ${program} ${what}")
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+# A BMP written by rayform (24-bit, bottom-up): W x H and not every pixel the
+# colour of the first.
+function(check_bmp path w h)
+  if(NOT EXISTS "${path}")
+    message(FATAL_ERROR "${path} was not written")
+  endif()
+  file(SIZE "${path}" size)
+  file(READ "${path}" magic LIMIT 2 HEX)
+  if(NOT magic STREQUAL "424d" OR size LESS 54)  # "BM"
+    message(FATAL_ERROR "${path} is not a BMP (${size} bytes)")
+  endif()
+  foreach(field "offset;10" "width;18" "height;22")
+    list(GET field 0 name)
+    list(GET field 1 at)
+    file(READ "${path}" le OFFSET ${at} LIMIT 4 HEX)
+    string(REGEX REPLACE "(..)(..)(..)(..)" "\\4\\3\\2\\1" be "${le}")
+    math(EXPR ${name} "0x${be}")
+  endforeach()
+  if(NOT width EQUAL w OR NOT height EQUAL h)
+    message(FATAL_ERROR "${path} is ${width}x${height}, expected ${w}x${h}")
+  endif()
+  math(EXPR bytes "${w} * ${h} * 3")  # rows unpadded: w * 3 is a multiple of 4 for the sizes used here
+  file(READ "${path}" pixels OFFSET ${offset} LIMIT ${bytes} HEX)
+  string(SUBSTRING "${pixels}" 0 6 first)
+  math(EXPR count "${w} * ${h}")
+  string(REPEAT "${first}" ${count} uniform)
+  if(pixels STREQUAL uniform)
+    message(FATAL_ERROR "${path} is blank: every pixel is ${first} (BGR)")
+  endif()
+endfunction()
+
+function(check_render program)
+  set(scene "${SOURCE_DIR}/scenes/default.txt")
+  file(REMOVE "${WORK}/out.bmp" "${WORK}/out.tif")
+  run("${program}" "${scene}" "${WORK}/out.bmp" 64 48)
+  check_bmp("${WORK}/out.bmp" 64 48)
+  run("${program}" "${scene}" "${WORK}/out.tif" 64 48)
+  file(SIZE "${WORK}/out.tif" size)
+  if(NOT size GREATER 0)
+    message(FATAL_ERROR "${WORK}/out.tif is empty")
+  endif()
+  message(STATUS "${program}: a 64x48 BMP that is not blank, and a TIFF of ${size} bytes")
+endfunction()
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(consumer_src "${SOURCE_DIR}/tests/package/consumer")
+# The nested builds compile rayform once more, as cheaply as they can: no
+# optimisation and no debug information (build type None: no flags of its own;
+# the subdirectory build has no build type at all), no ccache.
+set(common -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=)
+
+if(MODE STREQUAL "install")
+  set(prefix "${WORK}/prefix")
+  run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK}/rayform" ${common} -DCMAKE_BUILD_TYPE=None
+      "-DCMAKE_INSTALL_PREFIX=${prefix}" -DRAYFORM_TESTS=OFF -DRAYFORM_STRESS_TESTS=OFF -DRAYFORM_BENCH=OFF
+      -DRAYFORM_EXAMPLES=OFF -DRAYFORM_CLI=ON -DRAYFORM_INSTALL=ON)
+  run(${CMAKE_COMMAND} --build "${WORK}/rayform" -j ${JOBS})
+  run(${CMAKE_COMMAND} --install "${WORK}/rayform")
+  # Nothing may refer to the build tree any more (the plugin is found in the
+  # prefix, where the CLI and the compiled-in install folder point).
+  file(REMOVE_RECURSE "${WORK}/rayform")
+  foreach(f bin/rayform lib/rayform/librayform_oiio.so lib/librayform_core.a lib/librayform_importers.a
+            lib/cmake/rayform/rayformConfig.cmake lib/cmake/rayform/rayformConfigVersion.cmake
+            lib/cmake/rayform/rayformTargets.cmake lib/pkgconfig/rayform.pc include/rayform/scene/scene.h
+            include/rayform/importers/scene_io.h)
+    if(NOT EXISTS "${prefix}/${f}")
+      message(FATAL_ERROR "not installed: ${prefix}/${f}")
+    endif()
+  endforeach()
+
+  # The installed CLI: the plugin from ../lib/rayform beside it.
+  file(REMOVE "${WORK}/cli.tif")
+  run("${prefix}/bin/rayform" render "${SOURCE_DIR}/scenes/default.txt" -o "${WORK}/cli.tif" --size 32x24)
+  if(NOT EXISTS "${WORK}/cli.tif")
+    message(FATAL_ERROR "the installed rayform did not write ${WORK}/cli.tif")
+  endif()
+
+  run(${CMAKE_COMMAND} -S "${consumer_src}" -B "${WORK}/consumer" ${common} -DCMAKE_BUILD_TYPE=None
+      "-DCMAKE_PREFIX_PATH=${prefix}" -DRAYFORM_CONSUMER_MODE=package)
+  run(${CMAKE_COMMAND} --build "${WORK}/consumer" -j ${JOBS})
+  check_render("${WORK}/consumer/consumer_render")
+
+  # rayform.pc: the include folder, then the example compiled and linked with
+  # pkg-config's flags alone.
+  find_program(PKG_CONFIG pkg-config REQUIRED)
+  set(ENV{PKG_CONFIG_PATH} "${prefix}/lib/pkgconfig")
+  run(${PKG_CONFIG} --cflags --libs rayform)
+  string(STRIP "${run_output}" flags)
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  set(found_include FALSE)
+  foreach(f ${flags})
+    if(f MATCHES "^-I(.*)")
+      if(EXISTS "${CMAKE_MATCH_1}/rayform/importers/scene_io.h")
+        set(found_include TRUE)
+      endif()
+    endif()
+  endforeach()
+  if(NOT found_include)
+    message(FATAL_ERROR "pkg-config --cflags rayform names no folder holding rayform/importers/scene_io.h: ${flags}")
+  endif()
+  find_program(CXX NAMES c++ g++ REQUIRED)
+  run(${CXX} -std=c++20 "${SOURCE_DIR}/examples/render_scene.cpp" -o "${WORK}/pc_render" ${flags})
+  check_render("${WORK}/pc_render")
+elseif(MODE STREQUAL "subdirectory")
+  unset(ENV{CMAKE_BUILD_TYPE})  # CMake's default for a new build folder: the consumer chooses none
+  run(${CMAKE_COMMAND} -S "${consumer_src}" -B "${WORK}/consumer" ${common} -DRAYFORM_CONSUMER_MODE=subdirectory
+      "-DRAYFORM_DIR=${SOURCE_DIR}")
+  # rayform as a subproject: no build type forced on the consumer, none of
+  # rayform's tests, benchmarks or CLI in its build.
+  file(STRINGS "${WORK}/consumer/CMakeCache.txt" build_type REGEX "^CMAKE_BUILD_TYPE:")
+  if(NOT build_type MATCHES "^CMAKE_BUILD_TYPE:[A-Z]+=$")
+    message(FATAL_ERROR "rayform set the consumer's build type: ${build_type}")
+  endif()
+  run(${CMAKE_COMMAND} --build "${WORK}/consumer" --target help)
+  foreach(t rayform rayform_unit_tests rayform_example_render rayform_bench_render)
+    if(run_output MATCHES "(^|\n)${t}:")
+      message(FATAL_ERROR "the consumer's build has rayform's target ${t}")
+    endif()
+  endforeach()
+  run(${CMAKE_COMMAND} --build "${WORK}/consumer" -j ${JOBS})
+  check_render("${WORK}/consumer/consumer_render")
+else()
+  message(FATAL_ERROR "MODE is install or subdirectory, not '${MODE}'")
+endif()
+file(REMOVE_RECURSE "${WORK}")
+string(TIMESTAMP finished "%s")
+math(EXPR total "${finished} - ${started}")
+message(STATUS "package.${MODE}: passed in ${total} s")
