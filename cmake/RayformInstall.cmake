@@ -24,18 +24,23 @@ if(TARGET rayform)
 endif()
 
 # Headers: every header of the libraries, under the path the sources include
-# it by, except the readers' internals that include tiny_gltf.h or
-# tiny_obj_loader.h (private dependencies a consumer does not have). No
-# installed header includes them (tests/package compiles every installed
-# header with nothing but rayform::core's usage requirements).
-set(RAYFORM_PRIVATE_HEADERS gltf/gltf_accessors.h gltf/gltf_builder.h gltf/gltf_file_access.h
-                            gltf/gltf_scene_builder.h obj/obj_parallel_parse.h)
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform
-        FILES_MATCHING PATTERN "*.h")
+# it by, except those private to one source file: the readers' internals that
+# include tiny_gltf.h or tiny_obj_loader.h (private dependencies a consumer
+# does not have), and the traversal kernels that mesh_accel_traverse.cpp
+# includes once per instruction set. No installed header includes them
+# (tests/package compiles every installed header with nothing but
+# rayform::core's usage requirements).
+set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_kernel.h src/accel/mesh_accel_packet8.h
+                            importers/gltf/gltf_accessors.h importers/gltf/gltf_builder.h
+                            importers/gltf/gltf_file_access.h importers/gltf/gltf_scene_builder.h
+                            importers/obj/obj_parallel_parse.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})
+  string(REPLACE "." "\\." _h "${_h}")
   list(APPEND _exclude REGEX "/${_h}$" EXCLUDE)
 endforeach()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform
+        FILES_MATCHING PATTERN "*.h" ${_exclude})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/importers/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform/importers
         FILES_MATCHING PATTERN "*.h" ${_exclude})
 
