@@ -1,18 +1,22 @@
 # tests/package (cmake -P): rayform used by an outside project, the consumer
-# of tests/package/consumer (examples/render_scene.cpp).
-#   MODE=install       configure and build rayform's libraries, CLI and plugin
-#                      alone (no tests, benchmarks, examples), `cmake --install`
-#                      them to WORK/prefix, delete that build, then build the
-#                      consumer with find_package(rayform) and check rayform.pc
-#                      with pkg-config (flags, and a program compiled and linked
-#                      with them alone)
-#   MODE=subdirectory  build the consumer with add_subdirectory(SOURCE_DIR), no
-#                      CMAKE_CXX_STANDARD nor CMAKE_BUILD_TYPE of its own
+# of tests/package/consumer (examples/render_scene.cpp). The two modes share
+# one build of rayform's libraries (the slow part), in this order (ctest
+# fixture rayform_package_build):
+#   MODE=subdirectory  empty WORK, build the consumer with
+#                      add_subdirectory(SOURCE_DIR), no CMAKE_CXX_STANDARD nor
+#                      CMAKE_BUILD_TYPE of its own; rayform adds none of its
+#                      tests, benchmarks or CLI there. The build is kept.
+#   MODE=install       turn on rayform's install rules and CLI in that build
+#                      (RAYFORM_INSTALL, RAYFORM_CLI: only the CLI is compiled
+#                      more), `cmake --install` it to WORK/prefix, delete the
+#                      build, then build the consumer with find_package(rayform)
+#                      and check rayform.pc with pkg-config (flags, and a
+#                      program compiled and linked with them alone)
 # Either way the consumer renders SOURCE_DIR/scenes/default.txt to a BMP that
 # must be a 64x48 picture with more than one colour, and to a TIFF, written
 # through the OpenImageIO plugin (librayform_oiio.so, dlopen'ed), that must
 # exist and not be empty.
-# Needs: SOURCE_DIR, WORK (emptied first), MODE; optional JOBS (default 2).
+# Needs: SOURCE_DIR, WORK, MODE; optional JOBS (default 2).
 foreach(v SOURCE_DIR WORK MODE)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "package_test.cmake needs -D${v}=...")
@@ -84,24 +88,48 @@ function(check_render program)
   message(STATUS "${program}: a 64x48 BMP that is not blank, and a TIFF of ${size} bytes")
 endfunction()
 
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
 set(consumer_src "${SOURCE_DIR}/tests/package/consumer")
-# The nested builds compile rayform once more, as cheaply as they can: no
-# optimisation and no debug information (build type None: no flags of its own;
-# the subdirectory build has no build type at all), no ccache.
+set(shared_build "${WORK}/subproject")  # the consumer with rayform as its subdirectory
+set(prefix "${WORK}/prefix")
+# The nested build compiles rayform once more, as cheaply as it can: no
+# optimisation and no debug information (no build type: no flags of its own),
+# no ccache.
 set(common -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=)
 
-if(MODE STREQUAL "install")
-  set(prefix "${WORK}/prefix")
-  run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK}/rayform" ${common} -DCMAKE_BUILD_TYPE=None
-      "-DCMAKE_INSTALL_PREFIX=${prefix}" -DRAYFORM_TESTS=OFF -DRAYFORM_STRESS_TESTS=OFF -DRAYFORM_BENCH=OFF
-      -DRAYFORM_EXAMPLES=OFF -DRAYFORM_CLI=ON -DRAYFORM_INSTALL=ON)
-  run(${CMAKE_COMMAND} --build "${WORK}/rayform" -j ${JOBS})
-  run(${CMAKE_COMMAND} --install "${WORK}/rayform")
+if(MODE STREQUAL "subdirectory")
+  file(REMOVE_RECURSE "${WORK}")
+  file(MAKE_DIRECTORY "${WORK}")
+  unset(ENV{CMAKE_BUILD_TYPE})  # CMake's default for a new build folder: the consumer chooses none
+  # The install prefix is named now, for the install mode's use of this build
+  # (the plugin's install folder is compiled into the library).
+  run(${CMAKE_COMMAND} -S "${consumer_src}" -B "${shared_build}" ${common} -DRAYFORM_CONSUMER_MODE=subdirectory
+      "-DRAYFORM_DIR=${SOURCE_DIR}" "-DCMAKE_INSTALL_PREFIX=${prefix}")
+  # rayform as a subproject: no build type forced on the consumer, none of
+  # rayform's tests, benchmarks or CLI in its build.
+  file(STRINGS "${shared_build}/CMakeCache.txt" build_type REGEX "^CMAKE_BUILD_TYPE:")
+  if(NOT build_type MATCHES "^CMAKE_BUILD_TYPE:[A-Z]+=$")
+    message(FATAL_ERROR "rayform set the consumer's build type: ${build_type}")
+  endif()
+  run(${CMAKE_COMMAND} --build "${shared_build}" --target help)
+  foreach(t rayform rayform_unit_tests rayform_example_render rayform_bench_render)
+    if(run_output MATCHES "(^|\n)${t}:")
+      message(FATAL_ERROR "the consumer's build has rayform's target ${t}")
+    endif()
+  endforeach()
+  run(${CMAKE_COMMAND} --build "${shared_build}" -j ${JOBS})
+  check_render("${shared_build}/consumer_render")
+elseif(MODE STREQUAL "install")
+  if(NOT EXISTS "${shared_build}/CMakeCache.txt")
+    message(FATAL_ERROR "${shared_build} is missing: package.subdirectory makes it (run both tests)")
+  endif()
+  file(REMOVE_RECURSE "${prefix}" "${WORK}/consumer")
+  # rayform's own install rules and CLI, off in a subproject by default.
+  run(${CMAKE_COMMAND} "${shared_build}" -DRAYFORM_INSTALL=ON -DRAYFORM_CLI=ON)
+  run(${CMAKE_COMMAND} --build "${shared_build}" -j ${JOBS})
+  run(${CMAKE_COMMAND} --install "${shared_build}")
   # Nothing may refer to the build tree any more (the plugin is found in the
   # prefix, where the CLI and the compiled-in install folder point).
-  file(REMOVE_RECURSE "${WORK}/rayform")
+  file(REMOVE_RECURSE "${shared_build}")
   foreach(f bin/rayform lib/rayform/librayform_oiio.so lib/librayform_core.a lib/librayform_importers.a
             lib/cmake/rayform/rayformConfig.cmake lib/cmake/rayform/rayformConfigVersion.cmake
             lib/cmake/rayform/rayformTargets.cmake lib/pkgconfig/rayform.pc include/rayform/scene/scene.h
@@ -110,7 +138,6 @@ if(MODE STREQUAL "install")
       message(FATAL_ERROR "not installed: ${prefix}/${f}")
     endif()
   endforeach()
-
   # The installed CLI: the plugin from ../lib/rayform beside it.
   file(REMOVE "${WORK}/cli.tif")
   run("${prefix}/bin/rayform" render "${SOURCE_DIR}/scenes/default.txt" -o "${WORK}/cli.tif" --size 32x24)
@@ -144,28 +171,12 @@ if(MODE STREQUAL "install")
   find_program(CXX NAMES c++ g++ REQUIRED)
   run(${CXX} -std=c++20 "${SOURCE_DIR}/examples/render_scene.cpp" -o "${WORK}/pc_render" ${flags})
   check_render("${WORK}/pc_render")
-elseif(MODE STREQUAL "subdirectory")
-  unset(ENV{CMAKE_BUILD_TYPE})  # CMake's default for a new build folder: the consumer chooses none
-  run(${CMAKE_COMMAND} -S "${consumer_src}" -B "${WORK}/consumer" ${common} -DRAYFORM_CONSUMER_MODE=subdirectory
-      "-DRAYFORM_DIR=${SOURCE_DIR}")
-  # rayform as a subproject: no build type forced on the consumer, none of
-  # rayform's tests, benchmarks or CLI in its build.
-  file(STRINGS "${WORK}/consumer/CMakeCache.txt" build_type REGEX "^CMAKE_BUILD_TYPE:")
-  if(NOT build_type MATCHES "^CMAKE_BUILD_TYPE:[A-Z]+=$")
-    message(FATAL_ERROR "rayform set the consumer's build type: ${build_type}")
-  endif()
-  run(${CMAKE_COMMAND} --build "${WORK}/consumer" --target help)
-  foreach(t rayform rayform_unit_tests rayform_example_render rayform_bench_render)
-    if(run_output MATCHES "(^|\n)${t}:")
-      message(FATAL_ERROR "the consumer's build has rayform's target ${t}")
-    endif()
-  endforeach()
-  run(${CMAKE_COMMAND} --build "${WORK}/consumer" -j ${JOBS})
-  check_render("${WORK}/consumer/consumer_render")
 else()
   message(FATAL_ERROR "MODE is install or subdirectory, not '${MODE}'")
 endif()
-file(REMOVE_RECURSE "${WORK}")
+if(MODE STREQUAL "install")
+  file(REMOVE_RECURSE "${WORK}")
+endif()
 string(TIMESTAMP finished "%s")
 math(EXPR total "${finished} - ${started}")
 message(STATUS "package.${MODE}: passed in ${total} s")
