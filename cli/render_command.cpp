@@ -177,7 +177,7 @@ void add_render_command(CLI::App& app) {
     apply_read_flags(a->read, read);
     a->job.limits = read.limits;
     a->job.access = read.access;
-    a->job.quiet = a->read.quiet;
+    a->job.quiet = quiet_requested(a->read);
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);
