@@ -29,6 +29,7 @@ Examples:
   Subcommands:
     rayform render scene.txt -o out.png --size 640x480 --depth 8:12:depth.png --normals normals.png
     rayform render duck.gltf -o duck.png --orbit 45,30      (camera around the model, which fits)
+    rayform render duck.gltf -o duck.png --transparent --background '#336699'
     rayform info scene.txt
 )";
 
