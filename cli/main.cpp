@@ -2,6 +2,7 @@
 // the course's own flags verbatim, and subcommands built with CLI11.
 #include "commands.h"
 #include "course_args.h"
+#include "read_flags.h"
 #include "render_job.h"
 #include "rayform/scene/error.h"
 #include "rayform/image/interrupt_cleanup.h"
@@ -28,6 +29,7 @@ Examples:
   Subcommands:
     rayform render scene.txt -o out.png --size 640x480 --depth 8:12:depth.png --normals normals.png
     rayform render duck.gltf -o duck.png --orbit 45,30      (camera around the model, which fits)
+    rayform render duck.gltf -o duck.png --transparent --background '#336699'
     rayform info scene.txt
 )";
 
@@ -53,6 +55,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "rayform " RAYFORM_VERSION);
   app.footer(std::string(examples) + exit_status);
   app.require_subcommand(1);
+  add_quiet_before_command(app);
 
   add_render_command(app);
   add_info_command(app);

@@ -5,6 +5,15 @@
 
 namespace rayform::cli {
 
+namespace {
+const char* quiet_help = "Print nothing but errors on stderr (no progress, notes or warnings)";
+}
+
+void add_quiet_before_command(CLI::App& app) {
+  const std::string help = std::string(quiet_help) + "; before the subcommand as after it";
+  app.add_flag("-q,--quiet", help);
+}
+
 void add_read_flags(CLI::App& command, ReadFlags& flags) {
   const Limits defaults;
   command.add_option("--limit", flags.limits,
@@ -16,7 +25,13 @@ void add_read_flags(CLI::App& command, ReadFlags& flags) {
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
                    "out or URIs other than data:)");
-  command.add_flag("-q,--quiet", flags.quiet, "Print nothing but errors on stderr (no progress, notes or warnings)");
+  command.add_flag("-q,--quiet", flags.quiet, quiet_help);
+  if (const CLI::App* program = command.get_parent())
+    flags.quiet_before_command = program->get_option_no_throw("--quiet");
+}
+
+bool quiet_requested(const ReadFlags& flags) {
+  return flags.quiet || (flags.quiet_before_command && flags.quiet_before_command->count() > 0);
 }
 
 void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
@@ -27,7 +42,7 @@ void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
       throw UsageError("--" + problem);
   }
   options.access.confine = flags.confine;
-  set_quiet(flags.quiet);
+  set_quiet(quiet_requested(flags));
 }
 
 }  // namespace rayform::cli

@@ -81,6 +81,23 @@ Orbit parse_orbit(const std::string& s) {
   return orbit;
 }
 
+// "R,G,B" with each 0..1, or "#RRGGBB" in hexadecimal (00..ff, as colour
+// pickers show it) -> display values 0..1.
+vec3 parse_background(const std::string& s) {
+  const std::string expected = "--background expects R,G,B with each 0..1 or #RRGGBB, got '" + s + "'";
+  if (!s.empty() && s[0] == '#') {
+    if (s.size() != 7 || s.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
+      throw UsageError(expected);
+    vec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = float(std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16)) / 255.f;
+    return c;
+  }
+  std::optional<std::vector<float>> v = parse_numbers(s);
+  if (!v || v->size() != 3 || !std::all_of(v->begin(), v->end(), [](float x) { return x >= 0.f && x <= 1.f; }))
+    throw UsageError(expected);
+  return vec3((*v)[0], (*v)[1], (*v)[2]);
+}
+
 struct RenderArgs {
   RenderJob job;
   ReadFlags read;
@@ -142,13 +159,22 @@ void add_render_command(CLI::App& app) {
                    "parallel to a new view direction)")
       ->type_name("X,Y,Z");
   CLI::Option* fov = render->add_option("--fov", a->fov, "Camera opening angle in degrees (0 < DEG < 180)");
-  render->add_option("--background", a->background, "Background colour R,G,B");
+  CLI::Option* background =
+      render
+          ->add_option(
+              "--background", a->background,
+              "Background colour as a colour picker gives it: R,G,B with each 0..1 (0.5,0.5,1) or #RRGGBB with "
+              "0-255 values in hexadecimal (#8080ff); the 8-bit output shows exactly these values")
+          ->type_name("R,G,B|#RRGGBB");
+  render->add_flag("--transparent", job.transparent,
+                   "Background as alpha 0 (surfaces 1, edges between) in the colour output: .png/.tga with straight "
+                   "alpha, .exr/.tif premultiplied");
   render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
   render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a, camera, orbit, fov] {
+  render->callback([a, camera, orbit, fov, background] {
     parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
@@ -167,7 +193,7 @@ void add_render_command(CLI::App& app) {
     if (!a->look_from.empty()) a->job.look_from = parse_vec3(a->look_from, "--look-from");
     if (!a->look_at.empty()) a->job.look_at = parse_vec3(a->look_at, "--look-at");
     if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
-    if (!a->background.empty()) a->job.background = parse_vec3(a->background, "--background");
+    if (background->count() > 0) a->job.background = parse_background(a->background);
     if (fov->count() > 0) {
       if (!(a->fov > 0.f && a->fov < 180.f))
         throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
@@ -177,7 +203,7 @@ void add_render_command(CLI::App& app) {
     apply_read_flags(a->read, read);
     a->job.limits = read.limits;
     a->job.access = read.access;
-    a->job.quiet = a->read.quiet;
+    a->job.quiet = quiet_requested(a->read);
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     run_render_job(a->job);

@@ -9,6 +9,7 @@
 #include "rayform/render/render_memory.h"
 #include "rayform/image/color.h"
 #include "rayform/image/output_files.h"
+#include "rayform/image/quantize.h"
 #include "rayform/render/render.h"
 #include "rayform/scene/error.h"
 #include "rayform/scene/scene_defaults.h"
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <thread>
 #include <filesystem>
@@ -70,6 +72,18 @@ void encode_srgb(Image& img) {
   for (float& v : img.pixels) v = linear_to_srgb(std::clamp(v, 0.f, 1.f));
 }
 
+// The linear value of the display value v (0..1) for a render encoded as
+// sRGB: srgb_to_linear(v), moved by the few float steps needed for its 8-bit
+// sRGB encoding to be v's own 8-bit value, quantize_unit(v) (the round trip
+// in float can land one step below).
+float background_from_display(float v) {
+  const uint8_t wanted = quantize_unit(v);
+  float linear = srgb_to_linear(v);
+  for (int step = 0; step < 64 && quantize_srgb_direct(linear) != wanted; ++step)
+    linear = std::nextafter(linear, quantize_srgb_direct(linear) < wanted ? 2.f : -1.f);
+  return linear;
+}
+
 }  // namespace
 
 void check_output_folder(const std::string& path, const std::string& what) {
@@ -92,6 +106,7 @@ void check_render_job_memory(const RenderJob& job) {
   outputs.depth = job.depth.has_value();
   outputs.normals = !job.normals.empty();
   outputs.albedo = !job.albedo.empty();
+  if (job.transparent) outputs.alpha = AlphaMode::straight;  // either mode: the same buffers
   if (is_8bit_image_path(job.output)) outputs.color_format = ColorFormat::unit8;
   if (std::string problem = render_memory_problem(outputs, available_memory_bytes()); !problem.empty())
     throw Error(job.output + ": " + problem);
@@ -108,6 +123,8 @@ void run_render_job(const RenderJob& job) {
   }
   if (!job.normals.empty()) check_output_path(job.normals, "normals");
   if (!job.albedo.empty()) check_output_path(job.albedo, "albedo");
+  if (job.transparent && !is_alpha_image_path(job.output))
+    throw UsageError("--transparent: " + job.output + " cannot hold alpha (write .png, .tga, .exr or .tif)");
 
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError(problem);
   check_render_job_memory(job);  // before the scene is read (render() checks it again)
@@ -137,7 +154,15 @@ void run_render_job(const RenderJob& job) {
   set_up_camera(job, loaded.scene, asset);
   if (asset && add_headlight(loaded.scene, job.render.camera))
     note(job.input + " has no light: added a head-light along the camera");
-  if (job.background) loaded.scene.background.color = *job.background;
+  // Whether the scene's colours are linear and encoded as sRGB for display.
+  const bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
+                    (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
+  if (job.background) {
+    vec3& b = loaded.scene.background.color;
+    b = *job.background;
+    if (srgb)
+      for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
+  }
   double load_s = seconds_since(t_load);
   auto t_prepare = clock::now();
   PrepareOptions po;
@@ -147,12 +172,11 @@ void run_render_job(const RenderJob& job) {
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
-  bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
-              (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
   RenderOptions ro = job.render;
   ro.depth = job.depth.has_value();
   ro.normals = !job.normals.empty();
   ro.albedo = !job.albedo.empty();
+  if (job.transparent) ro.alpha = is_8bit_image_path(job.output) ? AlphaMode::straight : AlphaMode::premultiplied;
   // 8-bit files get 8-bit values straight from the render loop.
   if (is_8bit_image_path(job.output) && (job.albedo.empty() || is_8bit_image_path(job.albedo)))
     ro.color_format = srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
@@ -170,8 +194,11 @@ void run_render_job(const RenderJob& job) {
   // All outputs appear together or not at all.
   OutputFiles files(job.output);
   std::vector<std::pair<std::string, Image>> outputs;
-  if (ro.color_format == ColorFormat::linear_float) outputs.emplace_back(job.output, std::move(result.color));
-  else files.add_written(job.output, write_image8_temporary(job.output, result.color8));
+  if (ro.color_format == ColorFormat::linear_float)
+    outputs.emplace_back(job.output, job.transparent ? color_with_alpha(result) : std::move(result.color));
+  else
+    files.add_written(job.output,
+                      write_image8_temporary(job.output, job.transparent ? color8_with_alpha(result) : result.color8));
   if (job.depth)
     outputs.emplace_back(job.depth->file, depth_image(result, job.depth->min, job.depth->max,
                                                       course_2019 ? DepthStyle::near_black : DepthStyle::near_white));

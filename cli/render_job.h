@@ -34,8 +34,16 @@ struct RenderJob {
   // adjust the camera rendered.
   bool frame = false;
   std::optional<Orbit> orbit;
-  std::optional<vec3> look_from, look_at, up, background;
+  std::optional<vec3> look_from, look_at, up;
   std::optional<float> fov;
+  // Display values 0..1, as a colour picker gives them: for a scene rendered
+  // with sRGB encoding converted to linear (background_from_display), so that
+  // an 8-bit output shows these values; for raw (course) scenes as they are.
+  std::optional<vec3> background;
+  // The colour output with alpha 0 on the background (is_alpha_image_path):
+  // straight alpha in 8-bit files (PNG, TGA), premultiplied in float files
+  // (EXR, TIFF); see AlphaMode (render.h).
+  bool transparent = false;
   bool quiet = false;
   bool stats = false;         // print timings and counts on stderr
   bool flat_normals = false;  // OBJ: missing normals faceted

@@ -131,6 +131,11 @@ std::string write_image_temporary(const std::string& path, const Image& image) {
                          });
 }
 
+bool is_alpha_image_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".png" || ext == ".tga" || ext == ".exr" || ext == ".tif" || ext == ".tiff";
+}
+
 bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_extension(path)); }
 
 std::string write_image8_temporary(const std::string& path, const Image8& image) {

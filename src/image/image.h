@@ -58,6 +58,10 @@ bool is_8bit_image_path(const std::string& path);
 void commit_temporary(const std::string& temporary, const std::string& path);
 void discard_temporary(const std::string& temporary);
 
+// Whether rayform writes files with this path's extension with an alpha
+// channel: png and tga (straight alpha), exr and tif/tiff (premultiplied).
+bool is_alpha_image_path(const std::string& path);
+
 // True when OpenImageIO can write files with this path's extension.
 bool is_writable_image_path(const std::string& path);
 

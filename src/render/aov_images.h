@@ -18,4 +18,10 @@ enum class NormalStyle {
 Image depth_image(const RenderResult& r, float min_depth, float max_depth, DepthStyle style);
 Image normals_image(const RenderResult& r, NormalStyle style);
 
+// The colour with the coverage as a fourth (alpha) channel, for a render
+// with RenderOptions::alpha set: r.color (linear_float) as floats, r.color8
+// (unit8, srgb8) as bytes with alpha quantize_unit(coverage).
+Image color_with_alpha(const RenderResult& r);
+Image8 color8_with_alpha(const RenderResult& r);
+
 }  // namespace rayform

@@ -84,10 +84,17 @@ struct Tracer {
   }
 
   vec3 radiance(const Ray& ray, int depth) const {
-    Hit hit;
+    bool hit;
+    return radiance(ray, depth, &hit);
+  }
+
+  // The same, and whether the ray hit a surface (*hit; for coverage).
+  vec3 radiance(const Ray& ray, int depth, bool* hit) const {
+    Hit h;
     SurfacePoint sp;
     vec4 k(0.f);
-    if (!closest(ray, &hit, &sp, &k)) return miss(ray);
+    *hit = closest(ray, &h, &sp, &k);
+    if (!*hit) return miss(ray);
     return shade(ray, sp, vec3(k), depth);
   }
 
@@ -141,6 +148,7 @@ struct PixelOut {
   float depth = infinity;
   vec3 normal{0.f};
   vec3 albedo{0.f};
+  float coverage = 0.f;
 };
 
 // One sample of an 8-bit output: sRGB-encoded when `srgb` (the quantizer of
@@ -166,6 +174,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], width, height);
   const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
+  const bool alpha = o.alpha != AlphaMode::none, premultiplied = o.alpha == AlphaMode::premultiplied;
   const int ts = std::max(1, o.tile_size);
   const int tiles_x = (width + ts - 1) / ts, tiles_y = (height + ts - 1) / ts, tiles = tiles_x * tiles_y;
   std::atomic<int> done{0};
@@ -180,9 +189,10 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     SurfacePoint sp;
     vec4 k(0.f);
     if (!tracer.closest_from(ray, found, &hit, &sp, &k)) {
-      px.color = tracer.miss(ray);
+      px.color = premultiplied ? vec3(0.f) : tracer.miss(ray);
       return;
     }
+    px.coverage = 1.f;
     px.depth = hit.t;
     px.normal = sp.normal;
     px.albedo = vec3(k);
@@ -199,13 +209,15 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     if (o.depth) res.depth[pixel] = px.depth;
     if (o.normals) res.normals[pixel] = px.normal;
     if (o.albedo) store_color(o.color_format, srgb, res.albedo, res.albedo8, pixel, px.albedo);
+    if (alpha) res.coverage[pixel] = px.coverage;
   };
 
   // A camera ray that hits nothing shows the background; without a cube map
   // that is one value, whose 8-bit form is quantised once (most pixels of an
-  // asset framed by its bounds are background).
+  // asset framed by its bounds are background). Its coverage is 0, as
+  // allocated.
   PixelOut background;
-  background.color = s.background.color;
+  background.color = premultiplied ? vec3(0.f) : s.background.color;
   const bool background_bytes = !p.features.cube_map && !aovs && o.color_format != ColorFormat::linear_float;
   unsigned char background8[3] = {};
   for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
@@ -256,15 +268,39 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             shade_primary(ray, found, hit, px);
           } else {
             if (aovs) trace_primary(camera_ray(frame, i, j), px);
-            vec3 sum(0.f);
-            float weight = 0.f;
+            // sum and weight over all samples; hit_sum and covered over
+            // those that hit a surface (for AlphaMode).
+            vec3 sum(0.f), hit_sum(0.f);
+            float weight = 0.f, covered = 0.f;
             for (int n = 0; n < o.spp; ++n) {
               PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter);
               if (so.weight <= 0.f) continue;
-              sum += so.weight * tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0);
+              bool hit;
+              const vec3 c = tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0, &hit);
+              sum += so.weight * c;
               weight += so.weight;
+              if (hit) {
+                covered += so.weight;
+                if (alpha) hit_sum += so.weight * c;
+              }
             }
-            px.color = weight > 0.f ? sum / weight : tracer.radiance(camera_ray(frame, i, j), 0);
+            if (weight > 0.f) {
+              // Every sample missed: the background itself (the average of
+              // equal values, which float sums can miss by a step; an 8-bit
+              // output then shows exactly the background's bytes).
+              px.color = covered == 0.f && !p.features.cube_map ? background.color : sum / weight;
+            } else {  // no sample with weight: the centre ray alone
+              bool hit;
+              px.color = tracer.radiance(camera_ray(frame, i, j), 0, &hit);
+              weight = 1.f;
+              covered = hit ? 1.f : 0.f;
+              hit_sum = hit ? px.color : vec3(0.f);
+            }
+            if (alpha) {
+              px.coverage = covered / weight;
+              if (premultiplied) px.color = hit_sum / weight;
+              else if (covered > 0.f) px.color = hit_sum / covered;
+            }
           }
           store(pixel, px);
         }
@@ -340,6 +376,7 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   if (o.depth) res.depth.assign(size_t(width) * height, infinity);
   if (o.normals) res.normals.assign(size_t(width) * height, vec3(0.f));
   if (o.albedo) allocate_color(res.albedo, res.albedo8);
+  if (o.alpha != AlphaMode::none) res.coverage.assign(size_t(width) * height, 0.f);
 
   PathChoice c = choose_path(p, o);
   // Dispatch to one of the eight compiled paths.

@@ -18,6 +18,17 @@ namespace rayform {
 // (unit8) or after sRGB encoding (srgb8).
 enum class ColorFormat : uint8_t { linear_float, unit8, srgb8 };
 
+// Whether RenderResult::coverage is filled and how colour goes with it. A
+// pixel's coverage is the filter-weighted fraction of its camera samples that
+// hit a surface (1 inside an object, 0 on the background, between on edges).
+//   none: no coverage; colour as always (the background where rays miss).
+//   straight: colour is the average over the samples that hit (as PNG and TGA
+//     store it); a pixel no sample hits keeps the colour it has with none.
+//   premultiplied: colour is the average over all samples with misses
+//     counting as black (as OpenEXR stores it); background pixels are black.
+// Pixels every sample hits have the same colour in all three.
+enum class AlphaMode : uint8_t { none, straight, premultiplied };
+
 // The render parameters, one owner: their defaults are here, their rules in
 // render_options_problem below, and the command line fills this struct (no copy).
 struct RenderOptions {
@@ -30,6 +41,7 @@ struct RenderOptions {
   PixelFilter filter = PixelFilter::box;
   // Which per-pixel outputs to fill besides colour.
   bool depth = false, normals = false, albedo = false;
+  AlphaMode alpha = AlphaMode::none;
   ColorFormat color_format = ColorFormat::linear_float;
   bool generic = false;  // force the general path (no feature specialisation)
   bool packets = true;   // camera rays of a one-mesh scene eight at a time (the same image)
@@ -49,8 +61,9 @@ struct RenderResult {
   Image8 color8;  // 3 channels (ColorFormat::unit8 or srgb8)
   std::vector<float> depth;
   std::vector<vec3> normals;
-  Image albedo;    // 3 channels, as color
-  Image8 albedo8;  // 3 channels, as color8
+  Image albedo;                 // 3 channels, as color
+  Image8 albedo8;               // 3 channels, as color8
+  std::vector<float> coverage;  // 0..1 per pixel (AlphaMode, above), when alpha is not none
 };
 
 // What is wrong with `options`, "" when nothing: the one check of the

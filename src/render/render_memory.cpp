@@ -15,6 +15,7 @@ uint64_t render_memory_bytes(const RenderOptions& o) {
   if (o.depth) per_pixel += 4 + 12 + 3;
   if (o.normals) per_pixel += 12 + 12 + 3;
   if (o.albedo) per_pixel += color;
+  if (o.alpha != AlphaMode::none) per_pixel += 4 + (eight_bit ? 4 : 16);
   const uint64_t pixels = uint64_t(std::max(o.width, 0)) * uint64_t(std::max(o.height, 0));
   constexpr uint64_t most = std::numeric_limits<uint64_t>::max();
   return pixels > most / per_pixel ? most : pixels * per_pixel;

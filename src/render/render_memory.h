@@ -13,7 +13,8 @@ namespace rayform {
 // Bytes of the per-pixel buffers render() allocates for `options` plus what
 // writing them as files needs (each output converted once and encoded once:
 // 8-bit colour 3 + 3 bytes a pixel, float colour 12 + 12, depth 4 + 12 + 3,
-// normals 12 + 12 + 3, albedo as colour). Saturates instead of overflowing.
+// normals 12 + 12 + 3, albedo as colour, coverage 4 and the colour with an
+// alpha channel 4 (8-bit) or 16). Saturates instead of overflowing.
 uint64_t render_memory_bytes(const RenderOptions& options);
 
 // The memory the system can give this process now (Linux: MemAvailable of

@@ -113,6 +113,22 @@ expect_usage_error fov-0 "^rayform: --fov expects degrees strictly between 0 and
 expect_usage_error up-parallel "^rayform: --up must not be parallel" render "$ok" -o o.png --look-from 0,8,0 --up 0,1,0
 expect_usage_error look-at-is-look-from "^rayform: --look-at must differ from --look-from$" render "$ok" -o o.png --look-from 1,2,3 --look-at 1,2,3
 expect_usage_error output-extension-render "o\.xyz" render "$ok" -o o.xyz
+# --background: R,G,B in 0..1 or #RRGGBB, never clamped.
+bg_expects="^rayform: --background expects R,G,B with each 0..1 or #RRGGBB, got"
+expect_usage_error background-255 "$bg_expects '255,255,255'$" render "$ok" -o o.png --background 255,255,255
+expect_usage_error background-above-1 "$bg_expects '0,1.5,0'$" render "$ok" -o o.png --background 0,1.5,0
+expect_usage_error background-negative "$bg_expects '0,-0.1,0'$" render "$ok" -o o.png --background 0,-0.1,0
+expect_usage_error background-two "$bg_expects '0.5,0.5'$" render "$ok" -o o.png --background 0.5,0.5
+expect_usage_error background-nan "$bg_expects 'nan,0,0'$" render "$ok" -o o.png --background nan,0,0
+expect_usage_error background-empty "$bg_expects ''$" render "$ok" -o o.png --background ''
+expect_usage_error background-hex-short "$bg_expects '#fff'$" render "$ok" -o o.png --background '#fff'
+expect_usage_error background-hex-letters "$bg_expects '#12345g'$" render "$ok" -o o.png --background '#12345g'
+expect_usage_error background-hex-long "$bg_expects '#1234567'$" render "$ok" -o o.png --background '#1234567'
+# --transparent: only outputs with alpha; refused before the scene is read (a missing one is not reported).
+for ext in bmp jpg hdr; do
+  expect_usage_error transparent-$ext "^rayform: --transparent: o\.$ext cannot hold alpha \(write \.png, \.tga, \.exr or \.tif\)$" \
+    render "$in/nothere.txt" -o o.$ext --transparent
+done
 expect_usage_error info-bogus-option "--bogus" info "$ok" --bogus
 expect_usage_error convert-segments "^rayform: --sphere-segments" convert "$ok" o.obj --sphere-segments 2
 expect_usage_error convert-output-extension "o\.xyz: unknown scene format" convert "$ok" o.xyz

@@ -35,6 +35,23 @@ grep -q '^triangles:' info.out || fail info "with -q, info printed no counts on 
 check convert -q convert t.obj c.txt
 check convert-glb --quiet convert t.obj c.glb
 check course -quiet -input t.obj -size 16 16 -output k.png
+# -q/--quiet before the subcommand: the same as after it.
+for flag in -q --quiet; do
+  for sub in render info convert; do
+    case $sub in
+      render) args=(render t.obj -o r.png --size 16x16) ;;
+      info) args=(info t.obj) ;;
+      convert) args=(convert t.obj c.txt) ;;
+    esac
+    "$RAYFORM_BIN" $flag "${args[@]}" >before.out 2>before.err
+    rc=$?
+    if [ $rc -ne 0 ] || [ -s before.err ]; then
+      fail "before-$sub" "rayform $flag ${args[*]}: exit $rc, stderr: $(cat before.err)"
+    else
+      echo "ok   [before-$sub] rayform $flag $sub ...: exit 0, stderr empty"
+    fi
+  done
+done
 
 # Errors still print.
 "$RAYFORM_BIN" render nothere.txt -o e.png -q 2>err.log

@@ -58,8 +58,11 @@ TEST(Quantize, SrgbTableEqualsTheDirectFormulaAroundEveryThreshold) {
       }
     }
   }
-  EXPECT_GE(finite, 254);  // every value is reached, 255 perhaps not (1.055 - 0.055 rounds below 1)
-  EXPECT_EQ(q(inf), quantize_srgb_direct(1.f));
+  EXPECT_EQ(finite, 255);  // every value is reached, 255 at 1 exactly
+  EXPECT_EQ(quantize_srgb_direct(1.f), 255);
+  EXPECT_EQ(quantize_srgb_direct(std::nextafter(1.f, 0.f)), 254);
+  EXPECT_EQ(q(1.f), 255);
+  EXPECT_EQ(q(inf), 255);
 }
 
 // The lookup compares with one threshold only: every bucket of 2^16 floats
