@@ -381,16 +381,17 @@ TEST_F(ImageDecode, ASideLongerThanTheLimitsSquareIsRefused) {
 
 // The 23 bytes that used to render after 39 s at 4.1 GB: an RLE true-colour
 // TGA header declaring 23170 x 23170 at 32 bits, then a single RLE packet.
-TEST_F(ImageDecode, The23ByteRleTgaBombIsRefusedQuickly) {
+TEST_F(ImageDecode, The23ByteRleTgaBombIsRefusedFromItsHeader) {
   Bytes tga = {0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x82, 0x5A, 0x82, 0x5A, 32, 8, 0xFF, 1, 2, 3, 4};
   ASSERT_EQ(tga.size(), 23u);
   fs::path p = write_file(dir / "bomb.tga", tga);
-  auto start = std::chrono::steady_clock::now();
+  // Refused from the header, before any pixel is decoded: the message is the
+  // texel limit's. (No wall-clock bound here: the first read also opens the
+  // OpenImageIO plugin, seconds on a loaded machine.)
   EXPECT_EQ(error_of([&] { read_image_file(p.string()); }),
             p.string() +
                 ": texture is 23170x23170 (2.1 GB decoded), more than the limit of 268435456 texels "
                 "(raise it with --limit texture-texels=N)");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
   // Under a limit that lets it through, the 5 bytes of pixel data are not
   // enough for the 1024 x 1024 it declares: an error, not a picture.
   tga[12] = tga[14] = 0x00;
