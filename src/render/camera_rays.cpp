@@ -1,5 +1,8 @@
 #include "rayform/render/camera_rays.h"
 
+#include "rayform/accel/simd4.h"
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -18,6 +21,39 @@ CameraFrame make_camera_frame(const Camera& c, int width, int height) {
   f.orthographic = c.projection == Camera::Projection::orthographic;
   f.half_height = 0.5f * c.ortho_height;
   return f;
+}
+
+PixelCentreRays::PixelCentreRays(const CameraFrame& f, int width, int height) : origin_(f.origin), fw_(f.focal * f.w) {
+  for (int i = 0; i < width; ++i) {
+    const vec3 xu = image_x(f, float(i)) * f.u;
+    for (int a = 0; a < 3; ++a) xu_[a].push_back(xu[a]);
+  }
+  yv_.reserve(size_t(height));
+  for (int j = 0; j < height; ++j) yv_.push_back(image_y(f, float(j)) * f.v);
+}
+
+void PixelCentreRays::rays8(int i, int n, int j, Ray* rays) const {
+  if (n < 8) {
+    for (int l = 0; l < 8; ++l) rays[l] = ray(i + std::min(l, n - 1), j);
+    return;
+  }
+  using namespace simd;
+  // glm::normalize(xu + yv + fw): v * (1 / sqrt((v.x v.x + v.y v.y) + v.z v.z)).
+  const vec3 yv = yv_[size_t(j)];
+  for (int half = 0; half < 8; half += 4) {
+    f4 d[3];
+    for (int a = 0; a < 3; ++a) d[a] = loadu(&xu_[a][size_t(i + half)]) + splat(yv[a]) + splat(fw_[a]);
+    const f4 scale = splat(1.f) / vsqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    alignas(16) float dir[3][4];
+    for (int a = 0; a < 3; ++a) store(dir[a], d[a] * scale);
+    for (int l = 0; l < 4; ++l) {
+      Ray& r = rays[half + l];
+      r.origin = origin_;
+      r.direction = vec3(dir[0][l], dir[1][l], dir[2][l]);
+      r.tmin = 0.f;
+      r.tmax = infinity;
+    }
+  }
 }
 
 }  // namespace rayform

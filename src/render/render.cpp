@@ -15,6 +15,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 namespace rayform {
 namespace {
@@ -164,6 +165,13 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const Scene& s = *p.scene;
   const int width = o.width, height = o.height;
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], width, height);
+  // Pixel-centre rays of a perspective camera from per-column and per-row terms.
+  const std::optional<PixelCentreRays> centre_rays =
+      frame.orthographic ? std::nullopt : std::optional<PixelCentreRays>(std::in_place, frame, width, height);
+  // The ray through the centre of pixel (i, j) (j from the bottom): camera_ray(frame, i, j).
+  auto centre_ray = [&](int i, int j) {
+    return centre_rays ? centre_rays->ray(i, j) : camera_ray(frame, float(i), float(j));
+  };
   const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
   const int ts = std::max(1, o.tile_size);
@@ -224,8 +232,10 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const int n = std::min(8, x1 - xs);
           Ray rays[8];
           Hit hits[8];
-          for (int l = 0; l < 8; ++l)
-            rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
+          if (centre_rays) centre_rays->rays8(xs, n, height - 1 - y, rays);
+          else
+            for (int l = 0; l < 8; ++l)
+              rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
           const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
           for (int l = 0; l < n; ++l) {
             const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(xs + l);
@@ -246,7 +256,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
           PixelOut px;
           if (o.spp <= 1) {
-            const Ray ray = camera_ray(frame, i, j);
+            const Ray ray = centre_ray(x, height - 1 - y);
             Hit hit;
             const bool found = intersect_scene(p, ray, &hit);
             if (!found && !p.features.cube_map) {
