@@ -219,7 +219,10 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
   auto store_miss = [&](uint32_t pixel) {
     if (!background_bytes) return store(pixel, background);
-    std::copy(background8, background8 + 3, res.color8.pixels.begin() + size_t(pixel) * 3);
+    unsigned char* out = res.color8.pixels.data() + size_t(pixel) * 3;
+    out[0] = background8[0];
+    out[1] = background8[1];
+    out[2] = background8[2];
   };
 
   auto render_tile = [&](int tile) {
