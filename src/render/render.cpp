@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -32,6 +33,13 @@ struct Tracer {
   const Scene& scene;
   // Whether shading may start rays at a hit (shadows, reflections, refractions).
   bool spawns_rays = options.shadows || (Specular && options.bounces > 0);
+  // What shading needs of a hit point: a start for rays, the point for
+  // point and spot lights, or nothing for directional lights alone.
+  HitPoint hit_point = spawns_rays ? HitPoint::spawn
+                       : std::any_of(prepared.lights.begin(), prepared.lights.end(),
+                                     [](const PreparedLight& l) { return l.light.kind != Light::Kind::directional; })
+                           ? HitPoint::point
+                           : HitPoint::none;
 
   vec3 miss(const Ray& ray) const {
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
@@ -54,7 +62,7 @@ struct Tracer {
     for (bool first = true;; first = false) {
       if (!first) found = intersect_scene(prepared, ray, hit);
       if (!found) return false;
-      *sp = surface_point(prepared, ray, *hit, spawns_rays);
+      *sp = surface_point(prepared, ray, *hit, hit_point);
       const Material& m = prepared.materials[sp->material];
       if constexpr (Skips) {
         if (!m.double_sided && glm::dot(ray.direction, sp->geometric_normal) > 0.f) {
