@@ -32,7 +32,7 @@ struct SrgbQuantizer {
   std::array<uint8_t, buckets> bucket_level{};
   uint8_t level_at_or_below_zero = 0, level_at_or_above_one = 0;
 
-  uint8_t operator()(float v) const {
+  [[gnu::always_inline]] uint8_t operator()(float v) const {
     if (std::isnan(v)) return 0;
     if (v <= 0.f) return level_at_or_below_zero;
     if (v >= 1.f) return level_at_or_above_one;

@@ -210,7 +210,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     shade_primary(ray, found, hit, px);
   };
   const SrgbQuantizer* srgb = o.color_format == ColorFormat::srgb8 ? &srgb_quantizer() : nullptr;
-  auto store = [&](uint32_t pixel, const PixelOut& px) {
+  auto store = [&](uint32_t pixel, const PixelOut& px) __attribute__((always_inline)) {
     store_color(o.color_format, srgb, res.color, res.color8, pixel, px.color);
     if (o.depth) res.depth[pixel] = px.depth;
     if (o.normals) res.normals[pixel] = px.normal;
