@@ -225,24 +225,30 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const bool background_bytes = !p.features.cube_map && !aovs && o.color_format != ColorFormat::linear_float;
   unsigned char background8[3] = {};
   for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
-  auto store_miss = [&](uint32_t pixel) {
-    if (!background_bytes) return store(pixel, background);
-    unsigned char* out = res.color8.pixels.data() + size_t(pixel) * 3;
-    out[0] = background8[0];
-    out[1] = background8[1];
-    out[2] = background8[2];
-  };
 
   auto render_tile = [&](int tile) {
+    // Copies of what every pixel reads, local to the tile, so that the
+    // compiler need not reload them after each byte it stores.
+    const bool misses_bytes = background_bytes, misses_shaded = p.features.cube_map;
+    const unsigned char bg0 = background8[0], bg1 = background8[1], bg2 = background8[2];
+    unsigned char* const color8 = res.color8.pixels.data();
+    auto store_miss = [&](uint32_t pixel) __attribute__((always_inline)) {
+      if (!misses_bytes) return store(pixel, background);
+      unsigned char* out = color8 + size_t(pixel) * 3;
+      out[0] = bg0;
+      out[1] = bg1;
+      out[2] = bg2;
+    };
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
     int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
     if (o.spp <= 1 && sole_mesh >= 0) {
       // Rows of eight pixels; a shorter end of row repeats its last ray in the unused lanes.
+      // Every packet rewrites all rays, and the hits of the rays that hit (the only ones read).
+      Ray rays[8];
+      Hit hits[8];
       for (int y = y0; y < y1; ++y)
         for (int xs = x0; xs < x1; xs += 8) {
           const int n = std::min(8, x1 - xs);
-          Ray rays[8];
-          Hit hits[8];
           if (centre_rays) centre_rays->rays8(xs, n, height - 1 - y, rays);
           else
             for (int l = 0; l < 8; ++l)
@@ -250,7 +256,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
           for (int l = 0; l < n; ++l) {
             const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(xs + l);
-            if (!((found >> l) & 1) && !p.features.cube_map) {
+            if (!((found >> l) & 1) && !misses_shaded) {
               store_miss(pixel);
               continue;
             }
@@ -270,7 +276,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             const Ray ray = centre_ray(x, height - 1 - y);
             Hit hit;
             const bool found = intersect_scene(p, ray, &hit);
-            if (!found && !p.features.cube_map) {
+            if (!found && !misses_shaded) {
               store_miss(pixel);
               continue;
             }
