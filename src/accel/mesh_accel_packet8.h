@@ -151,27 +151,33 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
   }
 }
 
-// Eight rays (those in `active`) of one octant: the per-ray constants, then the
-// octant's kernel.
-inline int intersect8(const MeshAccel& m, const Ray* rays, int active, int oct, float* tmax, MeshHit* hits) {
+// Eight rays (those in `active`): the per-ray constants (the slab test's
+// inverse directions eight at a time, the same divisions as make_ray_slabs),
+// then the kernel of their octant. -1 when the active rays do not share one
+// octant (nothing traced then).
+inline int intersect8(const MeshAccel& m, const Ray* rays, int active, float* tmax, MeshHit* hits) {
   if (m.bvh.nodes.empty() || !active) return 0;
-  alignas(32) float org[3][8], inv[3][8], tmin[8];
-  TriRay tr[8] = {TriRay(rays[0]), TriRay(rays[1]), TriRay(rays[2]), TriRay(rays[3]),
-                  TriRay(rays[4]), TriRay(rays[5]), TriRay(rays[6]), TriRay(rays[7])};
+  alignas(32) float org[3][8], dir[3][8], tmin[8];
   for (int i = 0; i < 8; ++i) {
-    const RaySlabs s = make_ray_slabs(rays[i]);
     for (int a = 0; a < 3; ++a) {
-      org[a][i] = s.origin[a];
-      inv[a][i] = s.inv_dir[a];
+      org[a][i] = rays[i].origin[a];
+      dir[a][i] = rays[i].direction[a];
     }
     tmin[i] = rays[i].tmin;
   }
   NodeRay8 r8;
+  int oct = 0;
   for (int a = 0; a < 3; ++a) {
     r8.org[a] = _mm256_load_ps(org[a]);
-    r8.inv[a] = _mm256_load_ps(inv[a]);
+    r8.inv[a] = _mm256_div_ps(_mm256_set1_ps(1.f), _mm256_load_ps(dir[a]));
+    // make_ray_slabs' dir_is_neg: inv < 0, the same for every active ray or none.
+    const int neg = _mm256_movemask_ps(_mm256_cmp_ps(r8.inv[a], _mm256_setzero_ps(), _CMP_LT_OQ)) & active;
+    if (neg == active) oct |= 1 << a;
+    else if (neg != 0) return -1;
   }
   r8.tmin = _mm256_load_ps(tmin);
+  TriRay tr[8] = {TriRay(rays[0]), TriRay(rays[1]), TriRay(rays[2]), TriRay(rays[3]),
+                  TriRay(rays[4]), TriRay(rays[5]), TriRay(rays[6]), TriRay(rays[7])};
   switch (oct) {
     case 0: return intersect8_octant<0>(m, r8, tr, active, tmax, hits);
     case 1: return intersect8_octant<1>(m, r8, tr, active, tmax, hits);
