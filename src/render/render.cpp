@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -254,8 +255,26 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             for (int l = 0; l < 8; ++l)
               rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
           const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
+          const uint32_t pixel0 = uint32_t(y) * uint32_t(width) + uint32_t(xs);
+          if (misses_bytes) {
+            // Background bytes in all n pixels first, then the hits shaded over them.
+            unsigned char* out = color8 + size_t(pixel0) * 3;
+            for (int l = 0; l < n; ++l, out += 3) {
+              out[0] = bg0;
+              out[1] = bg1;
+              out[2] = bg2;
+            }
+            for (int rest = found; rest;) {
+              const int l = std::countr_zero(unsigned(rest));
+              rest &= rest - 1;
+              PixelOut px;
+              shade_primary(rays[l], true, hits[l], px);
+              store(pixel0 + uint32_t(l), px);
+            }
+            continue;
+          }
           for (int l = 0; l < n; ++l) {
-            const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(xs + l);
+            const uint32_t pixel = pixel0 + uint32_t(l);
             if (!((found >> l) & 1) && !misses_shaded) {
               store_miss(pixel);
               continue;
