@@ -30,11 +30,11 @@ struct NodeRay8 {
   __m256 org[3], inv[3], tmin;
 };
 
-// Closest hits of the rays in `active` (bit i: rays lane i), all of octant
-// Oct. tmax[i] is lowered to the hit distance; found bits returned, hits[i]
-// filled for them.
+// Closest hits of the rays in `active` (bit i: ray_list[i], lane i; r8 holds
+// their slab constants), all of octant Oct. tmax[i] is lowered to the hit
+// distance; found bits returned, hits[i] filled for them.
 template <int Oct>
-int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, int active, float* tmax,
+int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const Ray* ray_list, int active, float* tmax,
                       MeshHit* hits) {
   const WideBvhNode* nodes = m.bvh.nodes.data();
   const TrianglePacket* packets = m.packets.data();
@@ -54,6 +54,10 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
   __m256 tmax8 = _mm256_load_ps(tmax_lanes);
   uint32_t hit_slot[8] = {}, hit_id[8] = {};
   float hit_e[8][3] = {}, hit_inv[8] = {};
+  // The triangle test's constants of a ray, made when it first reaches a leaf
+  // (rays that miss every leaf never need them): bit i of tr_made for tr[i].
+  TriRay tr[8];
+  int tr_made = 0;
   const __m256 inf8 = _mm256_set1_ps(infinity), far8 = _mm256_set1_ps(far_scale);
   for (;;) {
     if (!WideBvhNode::is_leaf(ref)) {
@@ -108,6 +112,10 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
       int rest = rays;
       while (rest) {
         const int lane = pop_lowest_bit(rest);
+        if (!((tr_made >> lane) & 1)) {
+          tr[lane] = TriRay(ray_list[lane]);
+          tr_made |= 1 << lane;
+        }
         for (uint32_t k = first; k < first + count; ++k) {
           const PacketHits h = intersect_packet(packets[k], tr[lane], tmax_lanes[lane]);
           int best;
@@ -176,17 +184,15 @@ inline int intersect8(const MeshAccel& m, const Ray* rays, int active, float* tm
     else if (neg != 0) return -1;
   }
   r8.tmin = _mm256_load_ps(tmin);
-  TriRay tr[8] = {TriRay(rays[0]), TriRay(rays[1]), TriRay(rays[2]), TriRay(rays[3]),
-                  TriRay(rays[4]), TriRay(rays[5]), TriRay(rays[6]), TriRay(rays[7])};
   switch (oct) {
-    case 0: return intersect8_octant<0>(m, r8, tr, active, tmax, hits);
-    case 1: return intersect8_octant<1>(m, r8, tr, active, tmax, hits);
-    case 2: return intersect8_octant<2>(m, r8, tr, active, tmax, hits);
-    case 3: return intersect8_octant<3>(m, r8, tr, active, tmax, hits);
-    case 4: return intersect8_octant<4>(m, r8, tr, active, tmax, hits);
-    case 5: return intersect8_octant<5>(m, r8, tr, active, tmax, hits);
-    case 6: return intersect8_octant<6>(m, r8, tr, active, tmax, hits);
-    default: return intersect8_octant<7>(m, r8, tr, active, tmax, hits);
+    case 0: return intersect8_octant<0>(m, r8, rays, active, tmax, hits);
+    case 1: return intersect8_octant<1>(m, r8, rays, active, tmax, hits);
+    case 2: return intersect8_octant<2>(m, r8, rays, active, tmax, hits);
+    case 3: return intersect8_octant<3>(m, r8, rays, active, tmax, hits);
+    case 4: return intersect8_octant<4>(m, r8, rays, active, tmax, hits);
+    case 5: return intersect8_octant<5>(m, r8, rays, active, tmax, hits);
+    case 6: return intersect8_octant<6>(m, r8, rays, active, tmax, hits);
+    default: return intersect8_octant<7>(m, r8, rays, active, tmax, hits);
   }
 }
 
