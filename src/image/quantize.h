@@ -11,7 +11,7 @@
 
 namespace rayform {
 
-inline uint8_t quantize_unit(float v) {
+[[gnu::always_inline]] inline uint8_t quantize_unit(float v) {
   v = std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f);
   return uint8_t(std::min(255.f, std::floor(v * 255.f)));
 }
