@@ -211,7 +211,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     shade_primary(ray, found, hit, px);
   };
   const SrgbQuantizer* srgb = o.color_format == ColorFormat::srgb8 ? &srgb_quantizer() : nullptr;
-  auto store = [&](uint32_t pixel, const PixelOut& px) __attribute__((always_inline)) {
+  auto store = [&](uint32_t pixel, const PixelOut& px) {
     store_color(o.color_format, srgb, res.color, res.color8, pixel, px.color);
     if (o.depth) res.depth[pixel] = px.depth;
     if (o.normals) res.normals[pixel] = px.normal;
@@ -233,7 +233,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     const bool misses_bytes = background_bytes, misses_shaded = p.features.cube_map;
     const unsigned char bg0 = background8[0], bg1 = background8[1], bg2 = background8[2];
     unsigned char* const color8 = res.color8.pixels.data();
-    auto store_miss = [&](uint32_t pixel) __attribute__((always_inline)) {
+    auto store_miss = [&](uint32_t pixel) {
       if (!misses_bytes) return store(pixel, background);
       unsigned char* out = color8 + size_t(pixel) * 3;
       out[0] = bg0;
