@@ -30,11 +30,11 @@ struct NodeRay8 {
   __m256 org[3], inv[3], tmin;
 };
 
-// Closest hits of the rays in `active` (bit i: rays lane i), all of octant
-// Oct. tmax[i] is lowered to the hit distance; found bits returned, hits[i]
-// filled for them.
+// Closest hits of the rays in `active` (bit i: ray_list[i], lane i; r8 holds
+// their slab constants), all of octant Oct. tmax[i] is lowered to the hit
+// distance; found bits returned, hits[i] filled for them.
 template <int Oct>
-int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, int active, float* tmax,
+int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const Ray* ray_list, int active, float* tmax,
                       MeshHit* hits) {
   const WideBvhNode* nodes = m.bvh.nodes.data();
   const TrianglePacket* packets = m.packets.data();
@@ -54,6 +54,10 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
   __m256 tmax8 = _mm256_load_ps(tmax_lanes);
   uint32_t hit_slot[8] = {}, hit_id[8] = {};
   float hit_e[8][3] = {}, hit_inv[8] = {};
+  // The triangle test's constants of a ray, made when it first reaches a leaf
+  // (rays that miss every leaf never need them): bit i of tr_made for tr[i].
+  TriRay tr[8];
+  int tr_made = 0;
   const __m256 inf8 = _mm256_set1_ps(infinity), far8 = _mm256_set1_ps(far_scale);
   for (;;) {
     if (!WideBvhNode::is_leaf(ref)) {
@@ -108,6 +112,10 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
       int rest = rays;
       while (rest) {
         const int lane = pop_lowest_bit(rest);
+        if (!((tr_made >> lane) & 1)) {
+          tr[lane] = TriRay(ray_list[lane]);
+          tr_made |= 1 << lane;
+        }
         for (uint32_t k = first; k < first + count; ++k) {
           const PacketHits h = intersect_packet(packets[k], tr[lane], tmax_lanes[lane]);
           int best;
@@ -151,36 +159,40 @@ int intersect8_octant(const MeshAccel& m, const NodeRay8& r8, const TriRay* tr, 
   }
 }
 
-// Eight rays (those in `active`) of one octant: the per-ray constants, then the
-// octant's kernel.
-inline int intersect8(const MeshAccel& m, const Ray* rays, int active, int oct, float* tmax, MeshHit* hits) {
+// Eight rays (those in `active`): the per-ray constants (the slab test's
+// inverse directions eight at a time, the same divisions as make_ray_slabs),
+// then the kernel of their octant. -1 when the active rays do not share one
+// octant (nothing traced then).
+inline int intersect8(const MeshAccel& m, const Ray* rays, int active, float* tmax, MeshHit* hits) {
   if (m.bvh.nodes.empty() || !active) return 0;
-  alignas(32) float org[3][8], inv[3][8], tmin[8];
-  TriRay tr[8] = {TriRay(rays[0]), TriRay(rays[1]), TriRay(rays[2]), TriRay(rays[3]),
-                  TriRay(rays[4]), TriRay(rays[5]), TriRay(rays[6]), TriRay(rays[7])};
+  alignas(32) float org[3][8], dir[3][8], tmin[8];
   for (int i = 0; i < 8; ++i) {
-    const RaySlabs s = make_ray_slabs(rays[i]);
     for (int a = 0; a < 3; ++a) {
-      org[a][i] = s.origin[a];
-      inv[a][i] = s.inv_dir[a];
+      org[a][i] = rays[i].origin[a];
+      dir[a][i] = rays[i].direction[a];
     }
     tmin[i] = rays[i].tmin;
   }
   NodeRay8 r8;
+  int oct = 0;
   for (int a = 0; a < 3; ++a) {
     r8.org[a] = _mm256_load_ps(org[a]);
-    r8.inv[a] = _mm256_load_ps(inv[a]);
+    r8.inv[a] = _mm256_div_ps(_mm256_set1_ps(1.f), _mm256_load_ps(dir[a]));
+    // make_ray_slabs' dir_is_neg: inv < 0, the same for every active ray or none.
+    const int neg = _mm256_movemask_ps(_mm256_cmp_ps(r8.inv[a], _mm256_setzero_ps(), _CMP_LT_OQ)) & active;
+    if (neg == active) oct |= 1 << a;
+    else if (neg != 0) return -1;
   }
   r8.tmin = _mm256_load_ps(tmin);
   switch (oct) {
-    case 0: return intersect8_octant<0>(m, r8, tr, active, tmax, hits);
-    case 1: return intersect8_octant<1>(m, r8, tr, active, tmax, hits);
-    case 2: return intersect8_octant<2>(m, r8, tr, active, tmax, hits);
-    case 3: return intersect8_octant<3>(m, r8, tr, active, tmax, hits);
-    case 4: return intersect8_octant<4>(m, r8, tr, active, tmax, hits);
-    case 5: return intersect8_octant<5>(m, r8, tr, active, tmax, hits);
-    case 6: return intersect8_octant<6>(m, r8, tr, active, tmax, hits);
-    default: return intersect8_octant<7>(m, r8, tr, active, tmax, hits);
+    case 0: return intersect8_octant<0>(m, r8, rays, active, tmax, hits);
+    case 1: return intersect8_octant<1>(m, r8, rays, active, tmax, hits);
+    case 2: return intersect8_octant<2>(m, r8, rays, active, tmax, hits);
+    case 3: return intersect8_octant<3>(m, r8, rays, active, tmax, hits);
+    case 4: return intersect8_octant<4>(m, r8, rays, active, tmax, hits);
+    case 5: return intersect8_octant<5>(m, r8, rays, active, tmax, hits);
+    case 6: return intersect8_octant<6>(m, r8, rays, active, tmax, hits);
+    default: return intersect8_octant<7>(m, r8, rays, active, tmax, hits);
   }
 }
 

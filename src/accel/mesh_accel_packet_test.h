@@ -26,6 +26,7 @@ struct TriRay {
   f4 okx, oky, okz, sx, sy, sz;
   float tmin;
 
+  TriRay() = default;  // uninitialised, to be assigned
   explicit TriRay(const Ray& ray) {
     const TriangleRay tr = make_triangle_ray(ray);
     kx = tr.kx;

@@ -51,16 +51,9 @@ bool intersect_mesh(const MeshAccel& m, const Ray& ray, float& tmax, MeshHit* hi
 int intersect_mesh8(const MeshAccel& m, const Ray* rays, int active, float* tmax, MeshHit* hits) {
 #if RAYFORM_HAVE_AVX2_KERNEL
   if (use_avx2() && active) {
-    int oct = -1;
-    bool one_octant = true;
-    for (int rest = active; rest && one_octant;) {
-      const int i = std::countr_zero(unsigned(rest));
-      rest &= rest - 1;
-      const int o = octant(make_ray_slabs(rays[i]));
-      one_octant = oct < 0 || o == oct;
-      oct = o;
-    }
-    if (one_octant) return kernel_avx2::intersect8(m, rays, active, oct, tmax, hits);
+    // Rays of one octant go through the packet kernel, the others one by one.
+    const int found = kernel_avx2::intersect8(m, rays, active, tmax, hits);
+    if (found >= 0) return found;
   }
 #endif
   int found = 0;

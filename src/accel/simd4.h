@@ -36,6 +36,7 @@ inline f4 operator/(f4 a, f4 b) { return {_mm_div_ps(a.v, b.v)}; }
 inline f4 vmin(f4 a, f4 b) { return {_mm_min_ps(a.v, b.v)}; }
 inline f4 vmax(f4 a, f4 b) { return {_mm_max_ps(a.v, b.v)}; }
 inline f4 vabs(f4 a) { return {_mm_and_ps(a.v, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))}; }
+inline f4 vsqrt(f4 a) { return {_mm_sqrt_ps(a.v)}; }  // correctly rounded, as std::sqrt
 inline m4 operator<(f4 a, f4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
 inline m4 operator<=(f4 a, f4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline m4 operator>(f4 a, f4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
@@ -97,6 +98,7 @@ inline f4 operator/(f4 a, f4 b) { RAYFORM_F4_OP(a.v[i] / b.v[i]); }
 inline f4 vmin(f4 a, f4 b) { RAYFORM_F4_OP(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
 inline f4 vmax(f4 a, f4 b) { RAYFORM_F4_OP(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
 inline f4 vabs(f4 a) { RAYFORM_F4_OP(std::fabs(a.v[i])); }
+inline f4 vsqrt(f4 a) { RAYFORM_F4_OP(std::sqrt(a.v[i])); }
 inline m4 operator<(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] < b.v[i]); }
 inline m4 operator<=(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] <= b.v[i]); }
 inline m4 operator>(f4 a, f4 b) { RAYFORM_M4_OP(a.v[i] > b.v[i]); }

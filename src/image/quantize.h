@@ -11,7 +11,7 @@
 
 namespace rayform {
 
-inline uint8_t quantize_unit(float v) {
+[[gnu::always_inline]] inline uint8_t quantize_unit(float v) {
   v = std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f);
   return uint8_t(std::min(255.f, std::floor(v * 255.f)));
 }
@@ -32,7 +32,7 @@ struct SrgbQuantizer {
   std::array<uint8_t, buckets> bucket_level{};
   uint8_t level_at_or_below_zero = 0, level_at_or_above_one = 0;
 
-  uint8_t operator()(float v) const {
+  [[gnu::always_inline]] uint8_t operator()(float v) const {
     if (std::isnan(v)) return 0;
     if (v <= 0.f) return level_at_or_below_zero;
     if (v >= 1.f) return level_at_or_above_one;

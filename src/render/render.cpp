@@ -12,9 +12,12 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
+#include <bit>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 namespace rayform {
 namespace {
@@ -31,6 +34,13 @@ struct Tracer {
   const Scene& scene;
   // Whether shading may start rays at a hit (shadows, reflections, refractions).
   bool spawns_rays = options.shadows || (Specular && options.bounces > 0);
+  // What shading needs of a hit point: a start for rays, the point for
+  // point and spot lights, or nothing for directional lights alone.
+  HitPoint hit_point = spawns_rays ? HitPoint::spawn
+                       : std::any_of(prepared.lights.begin(), prepared.lights.end(),
+                                     [](const PreparedLight& l) { return l.light.kind != Light::Kind::directional; })
+                           ? HitPoint::point
+                           : HitPoint::none;
 
   vec3 miss(const Ray& ray) const {
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
@@ -53,7 +63,7 @@ struct Tracer {
     for (bool first = true;; first = false) {
       if (!first) found = intersect_scene(prepared, ray, hit);
       if (!found) return false;
-      *sp = surface_point(prepared, ray, *hit, spawns_rays);
+      *sp = surface_point(prepared, ray, *hit, hit_point);
       const Material& m = prepared.materials[sp->material];
       if constexpr (Skips) {
         if (!m.double_sided && glm::dot(ray.direction, sp->geometric_normal) > 0.f) {
@@ -172,6 +182,13 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const Scene& s = *p.scene;
   const int width = o.width, height = o.height;
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], width, height);
+  // Pixel-centre rays of a perspective camera from per-column and per-row terms.
+  const std::optional<PixelCentreRays> centre_rays =
+      frame.orthographic ? std::nullopt : std::optional<PixelCentreRays>(std::in_place, frame, width, height);
+  // The ray through the centre of pixel (i, j) (j from the bottom): camera_ray(frame, i, j).
+  auto centre_ray = [&](int i, int j) {
+    return centre_rays ? centre_rays->ray(i, j) : camera_ray(frame, float(i), float(j));
+  };
   const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
   const bool alpha = o.alpha != AlphaMode::none, premultiplied = o.alpha == AlphaMode::premultiplied;
@@ -221,27 +238,56 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const bool background_bytes = !p.features.cube_map && !aovs && o.color_format != ColorFormat::linear_float;
   unsigned char background8[3] = {};
   for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
-  auto store_miss = [&](uint32_t pixel) {
-    if (!background_bytes) return store(pixel, background);
-    std::copy(background8, background8 + 3, res.color8.pixels.begin() + size_t(pixel) * 3);
-  };
 
   auto render_tile = [&](int tile) {
+    // Copies of what every pixel reads, local to the tile, so that the
+    // compiler need not reload them after each byte it stores.
+    const bool misses_bytes = background_bytes, misses_shaded = p.features.cube_map;
+    const unsigned char bg0 = background8[0], bg1 = background8[1], bg2 = background8[2];
+    unsigned char* const color8 = res.color8.pixels.data();
+    auto store_miss = [&](uint32_t pixel) {
+      if (!misses_bytes) return store(pixel, background);
+      unsigned char* out = color8 + size_t(pixel) * 3;
+      out[0] = bg0;
+      out[1] = bg1;
+      out[2] = bg2;
+    };
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
     int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
     if (o.spp <= 1 && sole_mesh >= 0) {
       // Rows of eight pixels; a shorter end of row repeats its last ray in the unused lanes.
+      // Every packet rewrites all rays, and the hits of the rays that hit (the only ones read).
+      Ray rays[8];
+      Hit hits[8];
       for (int y = y0; y < y1; ++y)
         for (int xs = x0; xs < x1; xs += 8) {
           const int n = std::min(8, x1 - xs);
-          Ray rays[8];
-          Hit hits[8];
-          for (int l = 0; l < 8; ++l)
-            rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
+          if (centre_rays) centre_rays->rays8(xs, n, height - 1 - y, rays);
+          else
+            for (int l = 0; l < 8; ++l)
+              rays[l] = camera_ray(frame, float(xs + std::min(l, n - 1)), float(height - 1 - y));
           const int found = intersect_sole_mesh8(p, sole_mesh, rays, (1 << n) - 1, hits);
+          const uint32_t pixel0 = uint32_t(y) * uint32_t(width) + uint32_t(xs);
+          if (misses_bytes) {
+            // Background bytes in all n pixels first, then the hits shaded over them.
+            unsigned char* out = color8 + size_t(pixel0) * 3;
+            for (int l = 0; l < n; ++l, out += 3) {
+              out[0] = bg0;
+              out[1] = bg1;
+              out[2] = bg2;
+            }
+            for (int rest = found; rest;) {
+              const int l = std::countr_zero(unsigned(rest));
+              rest &= rest - 1;
+              PixelOut px;
+              shade_primary(rays[l], true, hits[l], px);
+              store(pixel0 + uint32_t(l), px);
+            }
+            continue;
+          }
           for (int l = 0; l < n; ++l) {
-            const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(xs + l);
-            if (!((found >> l) & 1) && !p.features.cube_map) {
+            const uint32_t pixel = pixel0 + uint32_t(l);
+            if (!((found >> l) & 1) && !misses_shaded) {
               store_miss(pixel);
               continue;
             }
@@ -258,10 +304,10 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
           PixelOut px;
           if (o.spp <= 1) {
-            const Ray ray = camera_ray(frame, i, j);
+            const Ray ray = centre_ray(x, height - 1 - y);
             Hit hit;
             const bool found = intersect_scene(p, ray, &hit);
-            if (!found && !p.features.cube_map) {
+            if (!found && !misses_shaded) {
               store_miss(pixel);
               continue;
             }

@@ -162,9 +162,20 @@ struct SurfacePoint {
   int material = invalid;
 };
 
-// `spawns_rays` false: no secondary ray will start here, so the bound of a
-// transformed instance leaves out the object-space round trip (the costliest
-// part); position_error then bounds only the point itself.
-SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit, bool spawns_rays = true);
+// What surface_point computes of the hit point (the normals, uv, colour and
+// material always).
+enum class HitPoint {
+  // position and a position_error that secondary rays can start from.
+  spawn,
+  // No secondary ray will start here: the bound of a transformed instance
+  // leaves out the object-space round trip (the costliest part), so
+  // position_error bounds only the point itself.
+  point,
+  // Neither (shading with directional lights only): position and
+  // position_error stay zero.
+  none,
+};
+
+SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hit, HitPoint need = HitPoint::spawn);
 
 }  // namespace rayform

@@ -17,15 +17,10 @@ struct LightSample {
   float distance;  // to the light; infinity for directional lights
 };
 
-inline LightSample sample_light(const PreparedLight& pl, vec3 p) {
+// sample_light of a point or spot light.
+inline LightSample sample_local_light(const PreparedLight& pl, vec3 p) {
   const Light& l = pl.light;
   LightSample s;
-  if (l.kind == Light::Kind::directional) {
-    s.to_light = pl.to_light;
-    s.color = l.color;
-    s.distance = infinity;
-    return s;
-  }
   vec3 d = l.position - p;
   float dist2 = glm::dot(d, d);
   s.distance = std::sqrt(dist2);
@@ -45,6 +40,12 @@ inline LightSample sample_light(const PreparedLight& pl, vec3 p) {
     s.color *= k * k;
   }
   return s;
+}
+
+// The light arriving at p (directional lights inline, the others by call).
+[[gnu::always_inline]] inline LightSample sample_light(const PreparedLight& pl, vec3 p) {
+  if (pl.light.kind == Light::Kind::directional) return {pl.to_light, pl.light.color, infinity};
+  return sample_local_light(pl, p);
 }
 
 // Surface colour K (diffuse colour or texel) of a hit, with its alpha.
