@@ -1,6 +1,7 @@
 #include "rayform/render/color_output.h"
 
 #include "rayform/image/color.h"
+#include "rayform/render/aov_images.h"
 #include "rayform/scene/error.h"
 
 #include <algorithm>
@@ -39,6 +40,7 @@ std::string write_color_temporary(const std::string& path, RenderResult& result,
                                   const ColorOutput& output) {
   const char* what = plane == ColorPlane::color ? "colour" : "albedo";
   const bool srgb = writes_srgb(output, path);
+  const bool with_alpha = plane == ColorPlane::color && !result.coverage.empty();
   if (result.color_format != ColorFormat::linear_float) {
     const Image8& bytes = plane == ColorPlane::color ? result.color8 : result.albedo8;
     if (bytes.pixels.empty()) throw Error(path + ": the render has no " + what + " to write");
@@ -46,10 +48,16 @@ std::string write_color_temporary(const std::string& path, RenderResult& result,
       throw Error(path + ": the render's " + what + " holds 8-bit " +
                   (result.color_format == ColorFormat::srgb8 ? "sRGB" : "raw") +
                   " values, not what this file needs (render with render_color_format)");
+    if (with_alpha) return write_image8_temporary(path, color8_with_alpha(result));
     return write_image8_temporary(path, bytes);
   }
   Image& image = plane == ColorPlane::color ? result.color : result.albedo;
   if (image.empty()) throw Error(path + ": the render has no " + what + " to write");
+  if (with_alpha) {
+    Image rgba = color_with_alpha(result);
+    if (srgb) encode_srgb_in_place(rgba);
+    return write_image_temporary(path, rgba);
+  }
   if (srgb) encode_srgb_in_place(image);
   return write_image_temporary(path, image);
 }

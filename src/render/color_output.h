@@ -51,8 +51,10 @@ enum class ColorPlane : uint8_t { color, albedo };
 
 // Writes `plane` of `result` to a temporary file beside `path` in the
 // encoding writes_srgb chooses, and returns the temporary's path (commit it
-// with commit_temporary, or several with OutputFiles::add_written). A float
-// plane is encoded in place: afterwards `result` holds the file's values.
+// with commit_temporary, or several with OutputFiles::add_written). Colour
+// gets the coverage as a fourth (alpha) channel, linear, when the render has
+// one (RenderOptions::alpha; color_with_alpha). A float plane without alpha
+// is encoded in place: afterwards `result` holds the file's values.
 // Throws rayform::Error when the plane is missing or holds 8-bit values of
 // another encoding, or a float file is asked for from 8-bit values (render
 // with render_color_format), or the file cannot be written.
