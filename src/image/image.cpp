@@ -140,8 +140,9 @@ bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_
 
 bool is_float_image_path(const std::string& path) {
   // The extensions of OpenImageIO's float formats in oiio_plugin_module.cpp
-  // (openexr, hdr, tiff, fits, pfm); tests/unit/image_io_test.cpp writes and
-  // reads back a value above 1 through each.
+  // (openexr, hdr, tiff, fits, pfm); tests/unit/color_output_test.cpp reads
+  // back values above 1 from .exr, .tif and .hdr (rayform reads no FITS, and
+  // Debian's OpenImageIO writes no PFM).
   const std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".fits" || ext == ".pfm";
 }
