@@ -101,7 +101,7 @@ vec3 parse_background(const std::string& s) {
 struct RenderArgs {
   RenderJob job;
   ReadFlags read;
-  std::string size = std::to_string(RenderOptions{}.width) + "x" + std::to_string(RenderOptions{}.height);
+  std::string size;  // empty: the default for the scene's format
   std::string depth, dialect, filter = "box", color = "auto";
   std::string orbit, look_from, look_at, up, background;
   float fov = 0.f;
@@ -121,7 +121,13 @@ void add_render_command(CLI::App& app) {
   CLI::App* render = app.add_subcommand("render", "Render a scene to an image");
   render->add_option("scene", job.input, "Scene file (.txt, .obj, .gltf, .glb)")->required();
   render->add_option("-o,--output", job.output, "Colour image (png, bmp, tga, jpg, exr, ...)")->required();
-  render->add_option("--size", a->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  auto size_text = [](SceneFormat f) {
+    const RenderOptions d = default_render_options(f);
+    return std::to_string(d.width) + "x" + std::to_string(d.height);
+  };
+  render->add_option("--size", a->size,
+                     "Image size WIDTHxHEIGHT (default: " + size_text(SceneFormat::obj) + " for OBJ and glTF, " +
+                         size_text(SceneFormat::course_txt) + " for course scenes)");
   render->add_option("--depth", a->depth, "Depth image MIN:MAX:FILE");
   render->add_option("--normals", job.normals, "Normals image");
   render->add_option("--albedo", job.albedo, "Unlit surface colour image");
@@ -135,7 +141,10 @@ void add_render_command(CLI::App& app) {
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
       ->check(CLI::IsMember({"box", "tent"}))
       ->capture_default_str();
-  render->add_option("--color", a->color, "Output encoding: raw (course), srgb (assets), auto")
+  render
+      ->add_option("--color", a->color,
+                   "Colour encoding: auto (course scenes raw; OBJ and glTF sRGB in 8-bit files, linear and unclamped "
+                   "in float files: exr, hdr, tif), raw (as computed), srgb (encoded, clamped to 0..1)")
       ->check(CLI::IsMember({"auto", "raw", "srgb"}))
       ->capture_default_str();
   render->add_flag("--frame", job.frame,
@@ -175,13 +184,14 @@ void add_render_command(CLI::App& app) {
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
   render->callback([a, camera, orbit, fov, background] {
-    parse_size(a->size, &a->job.render.width, &a->job.render.height);
+    a->job.default_size = a->size.empty();
+    if (!a->job.default_size) parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
     a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
-    a->job.color = a->color == "raw"    ? RenderJob::ColorEncoding::raw
-                   : a->color == "srgb" ? RenderJob::ColorEncoding::srgb
-                                        : RenderJob::ColorEncoding::automatic;
+    a->job.color = a->color == "raw"    ? ColorEncoding::raw
+                   : a->color == "srgb" ? ColorEncoding::srgb
+                                        : ColorEncoding::automatic;
     if (orbit->count() > 0) {  // given, even as ''
       if (!a->look_from.empty() || !a->look_at.empty())
         throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");

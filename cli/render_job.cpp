@@ -30,30 +30,19 @@ namespace rayform::cli {
 namespace fs = std::filesystem;
 namespace {
 
-// Chooses the camera rendered and applies --look-from/--look-at/--up/--fov
-// to it. --orbit and --frame replace the file's cameras with one placed by
-// orbit_camera (scene/scene_defaults.h); an asset file without a camera gets
-// the default camera. --look-from alone aims at the centre of the scene's
+// Applies --look-from/--look-at/--up/--fov to the camera rendered, once the
+// file's camera, the default camera or the --frame/--orbit one is in place
+// (load_ready_scene). --look-from alone aims at the centre of the scene's
 // bounds; an up vector the new direction makes useless is replaced
 // (up_not_parallel), an explicit --up parallel to it is an error.
-void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
-  auto bounds = [&] { return scene_stats(scene, job.limits.instances).bounds; };
-  if (job.orbit) {
-    scene.cameras = {orbit_camera(bounds(), *job.orbit, job.fov.value_or(default_camera_fov_deg))};
-  } else if (job.frame) {
-    scene.cameras.clear();
-    add_default_camera(scene);
-  } else if (asset && add_default_camera(scene)) {
-    note(job.input + " has no camera: added one framing the scene's bounds");
-  }
-  if (!(job.look_from || job.look_at || job.up || job.fov)) return;
+void adjust_camera(const RenderJob& job, Scene& scene) {
   const int camera = job.render.camera;
   if (camera < 0 || camera >= int(scene.cameras.size()))
     throw UsageError("--camera " + std::to_string(camera) + ": the scene has no such camera to adjust");
   Camera& c = scene.cameras[camera];
   if (job.look_from || job.look_at) {
     const vec3 from = job.look_from.value_or(c.center);
-    const vec3 target = job.look_at ? *job.look_at : framing_target(bounds());
+    const vec3 target = job.look_at ? *job.look_at : framing_target(scene_stats(scene, job.limits.instances).bounds);
     if (target == from)
       throw UsageError(job.look_at ? "--look-at must differ from --look-from"
                                    : "--look-from is the centre of the scene's bounds, where the camera would look: "
@@ -68,8 +57,25 @@ void set_up_camera(const RenderJob& job, Scene& scene, bool asset) {
   if (job.fov) c.fov_deg = *job.fov;
 }
 
-void encode_srgb(Image& img) {
-  for (float& v : img.pixels) v = linear_to_srgb(std::clamp(v, 0.f, 1.f));
+// What load_ready_scene is asked for: the reader's options, and the camera
+// the command line places (--frame and --orbit replace the file's cameras
+// with orbit_camera's; the others then adjust the camera rendered).
+ReadyOptions ready_options(const RenderJob& job) {
+  ReadyOptions r;
+  r.load.dialect = job.dialect;
+  r.load.flat_normals = job.flat_normals;
+  r.load.gltf_scene = job.gltf_scene;
+  r.load.limits = job.limits;
+  r.load.access = job.access;
+  r.camera = job.render.camera;
+  if (job.orbit) {
+    r.orbit = *job.orbit;
+    r.orbit_fov_deg = job.fov.value_or(default_camera_fov_deg);  // --orbit stands back for the fov in effect
+  } else if (job.frame) {
+    r.orbit = Orbit{};  // the default camera's place, whatever --fov then makes of it
+  }
+  if (job.look_from || job.look_at || job.up || job.fov) r.adjust_camera = [&job](Scene& s) { adjust_camera(job, s); };
+  return r;
 }
 
 // The linear value of the display value v (0..1) for a render encoded as
@@ -101,14 +107,25 @@ void check_output_path(const std::string& path, const char* what) {
   check_output_folder(path, what);
 }
 
+RenderOptions job_render_options(const RenderJob& job) {
+  RenderOptions o = job.render;
+  const SceneFormat format = scene_format_from_path(job.input);
+  if (job.default_size) {
+    const RenderOptions d = default_render_options(format);
+    o.width = d.width;
+    o.height = d.height;
+  }
+  o.depth = job.depth.has_value();
+  o.normals = !job.normals.empty();
+  o.albedo = !job.albedo.empty();
+  if (job.transparent) o.alpha = is_8bit_image_path(job.output) ? AlphaMode::straight : AlphaMode::premultiplied;
+  // 8-bit files get 8-bit values straight from the render loop.
+  o.color_format = render_color_format(ColorOutput{scene_colors(format), job.color}, job.output, job.albedo);
+  return o;
+}
+
 void check_render_job_memory(const RenderJob& job) {
-  RenderOptions outputs = job.render;
-  outputs.depth = job.depth.has_value();
-  outputs.normals = !job.normals.empty();
-  outputs.albedo = !job.albedo.empty();
-  if (job.transparent) outputs.alpha = AlphaMode::straight;  // either mode: the same buffers
-  if (is_8bit_image_path(job.output)) outputs.color_format = ColorFormat::unit8;
-  if (std::string problem = render_memory_problem(outputs, available_memory_bytes()); !problem.empty())
+  if (std::string problem = render_memory_problem(job_render_options(job), available_memory_bytes()); !problem.empty())
     throw Error(job.output + ": " + problem);
 }
 
@@ -139,28 +156,18 @@ void run_render_job(const RenderJob& job) {
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
   auto t_load = clock::now();
-  LoadOptions lo;
-  lo.dialect = job.dialect;
-  lo.flat_normals = job.flat_normals;
-  lo.gltf_scene = job.gltf_scene;
-  lo.limits = job.limits;
-  lo.access = job.access;
-  LoadedScene loaded = load_scene(job.input, lo);
+  ReadyScene loaded = load_ready_scene(job.input, ready_options(job));
   for (const std::string& w : loaded.warnings) warn(w);
-  // Asset files often carry neither camera nor light (a course scene always has
-  // a camera, and without lights its ambient light is white).
-  // The head-light follows the camera rendered, as the overrides left it.
-  const bool asset = loaded.format != SceneFormat::course_txt;
-  set_up_camera(job, loaded.scene, asset);
-  if (asset && add_headlight(loaded.scene, job.render.camera))
-    note(job.input + " has no light: added a head-light along the camera");
-  // Whether the scene's colours are linear and encoded as sRGB for display.
-  const bool srgb = job.color == RenderJob::ColorEncoding::srgb ||
-                    (job.color == RenderJob::ColorEncoding::automatic && loaded.format != SceneFormat::course_txt);
+  for (const std::string& n : loaded.notes) note(n);
   if (job.background) {
+    // Display values: converted to linear where the scene's colours are
+    // linear and shown through sRGB (any file: a float file holds linear
+    // values a viewer encodes), kept where they are written as they are.
+    const bool display_srgb = job.color == ColorEncoding::srgb ||
+                              (job.color == ColorEncoding::automatic && loaded.color.scene == SceneColors::linear);
     vec3& b = loaded.scene.background.color;
     b = *job.background;
-    if (srgb)
+    if (display_srgb)
       for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
   }
   double load_s = seconds_since(t_load);
@@ -172,14 +179,8 @@ void run_render_job(const RenderJob& job) {
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
-  RenderOptions ro = job.render;
-  ro.depth = job.depth.has_value();
-  ro.normals = !job.normals.empty();
-  ro.albedo = !job.albedo.empty();
-  if (job.transparent) ro.alpha = is_8bit_image_path(job.output) ? AlphaMode::straight : AlphaMode::premultiplied;
-  // 8-bit files get 8-bit values straight from the render loop.
-  if (is_8bit_image_path(job.output) && (job.albedo.empty() || is_8bit_image_path(job.albedo)))
-    ro.color_format = srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
+  const ColorOutput color{loaded.color.scene, job.color};
+  RenderOptions ro = job_render_options(job);
   Progress progress("rendering", job.quiet);
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
   auto t_render = clock::now();
@@ -187,27 +188,17 @@ void run_render_job(const RenderJob& job) {
   double render_s = seconds_since(t_render);
   progress.finish();
   auto t_write = clock::now();
-  if (srgb && ro.color_format == ColorFormat::linear_float) {
-    encode_srgb(result.color);
-    if (!job.albedo.empty()) encode_srgb(result.albedo);
-  }
   // All outputs appear together or not at all.
   OutputFiles files(job.output);
+  files.add_written(job.output, write_color_temporary(job.output, result, ColorPlane::color, color));
   std::vector<std::pair<std::string, Image>> outputs;
-  if (ro.color_format == ColorFormat::linear_float)
-    outputs.emplace_back(job.output, job.transparent ? color_with_alpha(result) : std::move(result.color));
-  else
-    files.add_written(job.output,
-                      write_image8_temporary(job.output, job.transparent ? color8_with_alpha(result) : result.color8));
   if (job.depth)
     outputs.emplace_back(job.depth->file, depth_image(result, job.depth->min, job.depth->max,
                                                       course_2019 ? DepthStyle::near_black : DepthStyle::near_white));
   if (!job.normals.empty())
     outputs.emplace_back(job.normals, normals_image(result, course_2012 ? NormalStyle::absolute : NormalStyle::offset));
-  if (!job.albedo.empty()) {
-    if (ro.color_format == ColorFormat::linear_float) outputs.emplace_back(job.albedo, std::move(result.albedo));
-    else files.add_written(job.albedo, write_image8_temporary(job.albedo, result.albedo8));
-  }
+  if (!job.albedo.empty())
+    files.add_written(job.albedo, write_color_temporary(job.albedo, result, ColorPlane::albedo, color));
   for (const auto& [path, image] : outputs) files.add_written(path, write_image_temporary(path, image));
   files.commit();
   if (job.stats)

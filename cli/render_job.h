@@ -2,9 +2,10 @@
 // Shared by the course-compatible flags and the `render` subcommand.
 #pragma once
 
+#include "rayform/importers/scene_ready.h"
+#include "rayform/render/color_output.h"
 #include "rayform/render/render.h"
 #include "rayform/scene/scene_defaults.h"
-#include "rayform/importers/scene_io.h"
 
 #include <optional>
 #include <string>
@@ -20,15 +21,18 @@ struct RenderJob {
   std::string input;
   std::string output;
   // Size, camera, threads, shadows, bounces, spp, filter, generic: filled by
-  // the command line, handed to render() as they are. The output flags
-  // (depth/normals/albedo) are set from the outputs below.
+  // the command line, handed to render() as they are (the size replaced by
+  // the default when default_size). The output flags (depth/normals/albedo)
+  // and the colour format are set from the outputs below.
   RenderOptions render;
   std::optional<DepthOutput> depth;
   std::string normals;  // empty: not written
   std::string albedo;   // empty: not written
   std::optional<CourseDialect> dialect;
-  // Output transfer function: auto = raw for course scenes, sRGB for assets.
-  enum class ColorEncoding { automatic, raw, srgb } color = ColorEncoding::automatic;
+  // No --size: the library's default for the scene's format (default_render_options).
+  bool default_size = false;
+  // Output transfer function (--color): automatic lets render/color_output.h choose.
+  ColorEncoding color = ColorEncoding::automatic;
   // Camera and background overrides (any format). --frame and --orbit
   // replace the file's cameras (scene/scene_defaults.h); the others then
   // adjust the camera rendered.
@@ -54,6 +58,11 @@ struct RenderJob {
 
 // Runs the job; throws rayform::Error with a message for the user.
 void run_render_job(const RenderJob& job);
+
+// The options handed to render(): job.render with the default size when none
+// was given, the outputs asked for and the colour buffer they need. Throws
+// rayform::Error for an input of unknown format.
+RenderOptions job_render_options(const RenderJob& job);
 
 // Throws rayform::Error when the job's outputs need more memory than the
 // machine has (render_memory.h); run_render_job's first check.

@@ -1,21 +1,22 @@
-// Rendering a scene with the rayform library, the way a program embedding it
-// would: load (any supported format, by extension) -> prepare -> render ->
-// write. Build target: rayform_example_render; tests/package builds it as
+// Rendering any model with the rayform library, the way a program embedding
+// it would. Build target: rayform_example_render; tests/package builds it as
 // another project would, linking rayform::importers (README, "Library use").
 //
 //   usage: rayform_example_render SCENE OUTPUT [WIDTH HEIGHT]
-//   e.g.   rayform_example_render scenes/default.txt default.png 640 480
+//   e.g.   rayform_example_render duck.glb duck.png
 //
-// Course scenes are written raw, as the course does; asset formats (OBJ,
-// glTF) carry linear colour, encoded as sRGB for display.
-#include <rayform/image/color.h>
-#include <rayform/image/image.h>
+// load_ready_scene reads any supported file (.txt course scene, .obj, .gltf,
+// .glb) and gives a model without a camera or lights a camera that frames it
+// and a light rig; the picture is 512x512 for OBJ and glTF, 200x200 for
+// course scenes, unless WIDTH and HEIGHT are given. write_color_image picks
+// the encoding from the scene and the file: sRGB in 8-bit files (png, jpg,
+// ...), linear in float files (exr, hdr), course scenes as the course writes.
+#include <rayform/importers/scene_ready.h>
+#include <rayform/render/color_output.h>
 #include <rayform/render/prepared_scene.h>
 #include <rayform/render/render.h>
 #include <rayform/scene/error.h>
-#include <rayform/importers/scene_io.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -25,31 +26,16 @@ int main(int argc, char** argv) {
     std::cerr << "usage: " << argv[0] << " SCENE OUTPUT [WIDTH HEIGHT]\n";
     return 2;
   }
-  const std::string scene_path = argv[1], output = argv[2];
-  rayform::RenderOptions options;
-  options.width = argc == 5 ? std::atoi(argv[3]) : 640;
-  options.height = argc == 5 ? std::atoi(argv[4]) : 480;
-
   try {
-    // 1. Read the file into the plain-data Scene (throws rayform::Error with
-    //    file:line:column on a bad file).
-    rayform::LoadedScene loaded = rayform::load_scene(scene_path);
-    for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
-    if (loaded.scene.cameras.empty()) throw rayform::Error(scene_path + ": the scene has no camera");
+    rayform::ReadyScene scene = rayform::load_ready_scene(argv[1]);
+    if (argc == 5) scene.render.width = std::atoi(argv[3]), scene.render.height = std::atoi(argv[4]);
+    rayform::PreparedScene prepared = rayform::prepare_scene(scene.scene);  // refers to scene.scene
+    rayform::RenderResult result = rayform::render(prepared, scene.render);
+    rayform::write_color_image(argv[2], result, scene.color);
 
-    // 2. Flatten the node tree, build the BVHs, decode the used textures.
-    //    The prepared scene refers to loaded.scene, which must outlive it.
-    rayform::PreparedScene prepared = rayform::prepare_scene(loaded.scene);
-
-    // 3. Trace one ray per pixel, in parallel tiles.
-    rayform::RenderResult result = rayform::render(prepared, options);
-
-    // 4. Write the colour picture; the format follows the extension.
-    rayform::Image image = std::move(result.color);
-    if (loaded.format != rayform::SceneFormat::course_txt)
-      for (float& v : image.pixels) v = rayform::linear_to_srgb(std::max(0.f, v));
-    rayform::write_image(output, image);
-    std::cout << "wrote " << output << " (" << image.width << "x" << image.height << ")\n";
+    for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
+    for (const std::string& n : scene.notes) std::cerr << "note: " << n << "\n";
+    std::cout << "wrote " << argv[2] << " (" << result.width << "x" << result.height << ")\n";
   } catch (const rayform::Error& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

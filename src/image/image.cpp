@@ -138,6 +138,15 @@ bool is_alpha_image_path(const std::string& path) {
 
 bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_extension(path)); }
 
+bool is_float_image_path(const std::string& path) {
+  // The extensions of OpenImageIO's float formats in oiio_plugin_module.cpp
+  // (openexr, hdr, tiff, fits, pfm); tests/unit/color_output_test.cpp reads
+  // back values above 1 from .exr, .tif and .hdr (rayform reads no FITS, and
+  // Debian's OpenImageIO writes no PFM).
+  const std::string ext = lower_extension(path);
+  return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".fits" || ext == ".pfm";
+}
+
 std::string write_image8_temporary(const std::string& path, const Image8& image) {
   std::string ext = lower_extension(path);
   if (!stb_writes_8bit(ext)) throw Error(path + ": not an 8-bit image type (bmp, png, tga, jpg)");

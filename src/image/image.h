@@ -55,6 +55,10 @@ std::string write_image_temporary(const std::string& path, const Image& image);
 // is_8bit_image_path holds (bmp, png, tga, jpg).
 std::string write_image8_temporary(const std::string& path, const Image8& image);
 bool is_8bit_image_path(const std::string& path);
+// True when files with this path's extension hold float samples, unclamped:
+// exr, hdr, tif/tiff, fits, pfm (the formats OpenImageIO's writer is asked
+// for floats, and stb's .hdr). Every other writable format stores 8-bit values.
+bool is_float_image_path(const std::string& path);
 void commit_temporary(const std::string& temporary, const std::string& path);
 void discard_temporary(const std::string& temporary);
 

@@ -414,6 +414,7 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   RenderResult res;
   res.width = width;
   res.height = height;
+  res.color_format = o.color_format;
   auto allocate_color = [&](Image& linear, Image8& quantised) {
     if (o.color_format == ColorFormat::linear_float) linear = Image(width, height, 3);
     else quantised = Image8{width, height, 3, std::vector<unsigned char>(size_t(width) * height * 3)};

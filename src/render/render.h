@@ -57,8 +57,9 @@ struct RenderOptions {
 // unlit surface colour K. Only the buffers asked for are allocated.
 struct RenderResult {
   int width = 0, height = 0;
-  Image color;    // 3 channels, linear, unclamped (ColorFormat::linear_float)
-  Image8 color8;  // 3 channels (ColorFormat::unit8 or srgb8)
+  ColorFormat color_format = ColorFormat::linear_float;  // RenderOptions::color_format: which buffers hold colour
+  Image color;                                           // 3 channels, linear, unclamped (ColorFormat::linear_float)
+  Image8 color8;                                         // 3 channels (ColorFormat::unit8 or srgb8)
   std::vector<float> depth;
   std::vector<vec3> normals;
   Image albedo;                 // 3 channels, as color

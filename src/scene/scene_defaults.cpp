@@ -93,4 +93,32 @@ bool add_headlight(Scene& scene, int camera) {
   return true;
 }
 
+bool add_light_rig(Scene& scene, int camera) {
+  if (!scene.lights.empty()) return false;
+  if (camera < 0 || camera >= int(scene.cameras.size())) camera = 0;
+  // The camera's frame: `back` towards the viewer, `right` and `top` across the image.
+  vec3 back(0.f, 0.f, 1.f), right(1.f, 0.f, 0.f), top(0.f, 1.f, 0.f);
+  if (!scene.cameras.empty()) {
+    const Camera& c = scene.cameras[size_t(camera)];
+    const vec3 forward = glm::normalize(c.direction);
+    if (is_finite(forward)) {
+      const vec3 side = glm::normalize(glm::cross(forward, up_not_parallel(c.up, forward)));
+      if (is_finite(side)) {
+        back = -forward;
+        right = side;
+        top = glm::cross(right, forward);
+      }
+    }
+  }
+  for (const RigLight& r : light_rig) {
+    Light l;
+    l.name = r.name;
+    l.kind = Light::Kind::directional;
+    l.color = vec3(r.intensity);
+    l.direction = -glm::normalize(r.to_light.x * right + r.to_light.y * top + r.to_light.z * back);
+    scene.lights.push_back(l);
+  }
+  return true;
+}
+
 }  // namespace rayform

@@ -1,5 +1,5 @@
 // Defaults for scenes whose files carry no camera or no light (OBJ always,
-// glTF often): a camera that frames the scene and a light that goes with it.
+// glTF often): a camera that frames the scene and lights that go with it.
 // The same framing places a camera anywhere around the scene (orbit_camera),
 // for the command line's --frame and --orbit. The caller decides whether to
 // use them (the CLI reports what it added).
@@ -63,5 +63,38 @@ bool add_default_camera(Scene& scene);
 // Returns whether a light was added. Call add_default_camera, and apply any
 // change to the camera, first.
 bool add_headlight(Scene& scene, int camera = 0);
+
+// The default light rig, three white directional lights fixed to the camera
+// rendered, for a first picture that shows an asset's shape from any side.
+// Each shines from `to_light`, given in the camera's frame (x right, y up, z
+// back towards the viewer), with intensity `intensity`:
+//   head-light  0.30  from the camera itself       (0, 0, 1)
+//   key         0.70  from above, to the right     (1, 1, 1) / sqrt(3)
+//   fill        0.20  from the left, a little low  (-1, -0.25, 1) / 1.436
+// Every surface the camera sees gets some of the head-light; the key, the
+// strongest, shades the sides differently from the top and the front, and
+// the fill keeps the sides it misses from going black, so that the shape
+// reads. The intensities keep a white diffuse surface within display range:
+// one facing the camera gets 0.30 + 0.70 / sqrt(3) + 0.20 / 1.436 = 0.84, and
+// no orientation gets more than the length of the intensity-weighted sum of
+// the three directions, 0.96 (a surface lit by all three at once). Specular
+// highlights and emission may still exceed 1.
+struct RigLight {
+  const char* name;
+  vec3 to_light;  // camera frame, unit
+  float intensity;
+};
+inline const RigLight light_rig[3] = {
+    {"headlight", vec3(0.f, 0.f, 1.f), 0.30f},
+    {"key", glm::normalize(vec3(1.f, 1.f, 1.f)), 0.70f},
+    {"fill", glm::normalize(vec3(-1.f, -0.25f, 1.f)), 0.20f},
+};
+
+// When the scene has no light, adds light_rig placed by camera `camera`
+// (the first when out of range; the default camera's frame, looking down -z
+// with up +y, without a camera). Returns whether lights were added. Call
+// add_default_camera, and apply any change to the camera, first: the lights
+// are fixed in the world, where that camera's frame put them.
+bool add_light_rig(Scene& scene, int camera = 0);
 
 }  // namespace rayform

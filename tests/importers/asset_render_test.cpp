@@ -1,8 +1,7 @@
 // Real assets through the one shader, by the library API: the duck exported
-// as OBJ (+MTL) and as glTF, with the same camera AND the same light (the CLI
-// gives each file a head-light along the camera it had before --look-from
-// applied, so its colour pictures cannot be compared; see
-// tests/scripts/asset_duck_obj_vs_gltf.sh for depth, normals and albedo).
+// as OBJ (+MTL) and as glTF, with the same camera AND the same light, one
+// key light set here in place of the light rig each file would get (see
+// tests/scripts/asset_duck_obj_vs_gltf.sh for the CLI's pictures).
 #include "rayform/image/color.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"

@@ -1,4 +1,4 @@
-// Default camera and headlight for scenes whose files have none.
+// Default camera, head-light and light rig for scenes whose files have none.
 #include "rayform/importers/obj/obj_reader.h"
 #include "rayform/scene/error.h"
 #include "rayform/scene/scene_defaults.h"
@@ -127,6 +127,79 @@ TEST(SceneDefaults, HeadlightShinesAlongTheCamera) {
   EXPECT_EQ(two.lights[0].direction, vec3(1, 0, 0));
   ASSERT_TRUE(add_headlight(two_again, 5));
   EXPECT_EQ(two_again.lights[0].direction, vec3(0, -1, 0));
+}
+
+// The diffuse light a white surface with unit normal n gets from the lights.
+float diffuse_sum(const Scene& s, vec3 n) {
+  float sum = 0.f;
+  for (const Light& l : s.lights) sum += std::max(0.f, glm::dot(-l.direction, n)) * l.color.x;
+  return sum;
+}
+
+TEST(SceneDefaults, LightRigIsFixedToTheCamera) {
+  // Looking down +x with up +y: right is +z, top +y, back -x.
+  Scene s = box_scene({-1, -1, -1}, {1, 1, 1});
+  Camera c;
+  c.direction = vec3(2, 0, 0);
+  c.up = vec3(0, 3, 0);
+  s.cameras.push_back(c);
+  ASSERT_TRUE(add_light_rig(s));
+  ASSERT_EQ(s.lights.size(), 3u);
+  const float k = 1.f / std::sqrt(3.f), f = 1.f / std::sqrt(2.0625f);
+  const struct {
+    const char* name;
+    vec3 direction;  // where the light travels: minus (right, top, back) in the camera's frame
+    float intensity;
+  } want[3] = {{"headlight", vec3(1, 0, 0), 0.3f},
+               {"key", -(k * vec3(0, 0, 1) + k * vec3(0, 1, 0) + k * vec3(-1, 0, 0)), 0.7f},
+               {"fill", -(-f * vec3(0, 0, 1) - 0.25f * f * vec3(0, 1, 0) + f * vec3(-1, 0, 0)), 0.2f}};
+  for (int i = 0; i < 3; ++i) {
+    const Light& l = s.lights[size_t(i)];
+    EXPECT_EQ(l.name, want[i].name);
+    EXPECT_EQ(l.kind, Light::Kind::directional);
+    EXPECT_EQ(l.color, vec3(want[i].intensity));
+    EXPECT_NEAR(glm::length(l.direction - want[i].direction), 0.f, 1e-6f) << want[i].name;
+  }
+  // Added once; nothing added to a scene with lights.
+  EXPECT_FALSE(add_light_rig(s));
+  EXPECT_EQ(s.lights.size(), 3u);
+  // It follows the camera asked for (the first when out of range); without a camera, the default camera's frame.
+  Scene two = box_scene({-1, -1, -1}, {1, 1, 1});
+  two.cameras = {Camera{}, c};
+  Scene two_again = two;
+  ASSERT_TRUE(add_light_rig(two, 1));
+  EXPECT_NEAR(glm::length(two.lights[0].direction - vec3(1, 0, 0)), 0.f, 1e-6f);
+  ASSERT_TRUE(add_light_rig(two_again, 7));
+  EXPECT_NEAR(glm::length(two_again.lights[0].direction - vec3(0, 0, -1)), 0.f, 1e-6f);
+  Scene bare = box_scene({-1, -1, -1}, {1, 1, 1});
+  ASSERT_TRUE(add_light_rig(bare));
+  EXPECT_NEAR(glm::length(bare.lights[1].direction + k * vec3(1, 1, 1)), 0.f, 1e-6f);
+}
+
+TEST(SceneDefaults, LightRigKeepsWhiteSurfacesInRange) {
+  // A camera looking at an angle, up not orthogonal to it.
+  Scene s = box_scene({-1, -1, -1}, {1, 1, 1});
+  Camera c;
+  c.direction = vec3(-1, -0.5f, -2);
+  c.up = vec3(0.2f, 1, 0);
+  s.cameras.push_back(c);
+  ASSERT_TRUE(add_light_rig(s));
+  // Facing the camera: 0.30 + 0.70 / sqrt(3) + 0.20 / 1.436 = 0.843 (documented in scene_defaults.h).
+  EXPECT_NEAR(diffuse_sum(s, -glm::normalize(c.direction)), 0.8434f, 1e-4f);
+  // No orientation over 0.96 (the length of the weighted sum of directions): 20 000 normals on the sphere.
+  float most = 0.f;
+  for (int i = 0; i < 20000; ++i) {
+    const float z = 1.f - 2.f * (float(i) + 0.5f) / 20000.f, r = std::sqrt(1.f - z * z), phi = 2.39996323f * float(i);
+    most = std::max(most, diffuse_sum(s, vec3(r * std::cos(phi), r * std::sin(phi), z)));
+  }
+  EXPECT_LE(most, 0.9581f);
+  EXPECT_GE(most, 0.955f);
+  // The sides are lit, differently: the key's side brighter than the fill's, nothing black but the underside.
+  const vec3 fwd = glm::normalize(c.direction), right = glm::normalize(glm::cross(fwd, c.up)),
+             top = glm::cross(right, fwd);
+  EXPECT_NEAR(diffuse_sum(s, right), 0.7f / std::sqrt(3.f), 1e-5f);
+  EXPECT_NEAR(diffuse_sum(s, -right), 0.2f / std::sqrt(2.0625f), 1e-5f);
+  EXPECT_NEAR(diffuse_sum(s, top), 0.7f / std::sqrt(3.f), 1e-5f);
 }
 
 TEST(SceneDefaults, EmptySceneGetsACameraAtZ5) {

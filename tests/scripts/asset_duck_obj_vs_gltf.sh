@@ -7,7 +7,7 @@
 # are held to the same rule: the files write their materials differently (the
 # MTL has Ks 0.5 with Ns 0, which the OBJ reader reads as no highlight; the
 # glTF is a rough dielectric) but both mean a matte textured duck, and neither
-# has a light, so each gets the head-light along the camera used.
+# has a light, so each gets the light rig along the camera used.
 source "$(dirname "$0")/lib.sh"
 require_shared
 duck="$RAYFORM_SHARED/assets/duck"

@@ -1,0 +1,40 @@
+#include "rayform/importers/scene_ready.h"
+
+#include "rayform/scene/scene_stats.h"
+
+#include <utility>
+
+namespace rayform {
+
+RenderOptions default_render_options(SceneFormat format) {
+  RenderOptions o;
+  if (format != SceneFormat::course_txt) o.width = o.height = asset_image_size;
+  return o;
+}
+
+SceneColors scene_colors(SceneFormat format) {
+  return format == SceneFormat::course_txt ? SceneColors::display : SceneColors::linear;
+}
+
+ReadyScene load_ready_scene(const std::string& path, const ReadyOptions& options) {
+  ReadyScene ready;
+  static_cast<LoadedScene&>(ready) = load_scene(path, options.load);
+  Scene& scene = ready.scene;
+  const bool asset = ready.format != SceneFormat::course_txt;
+  if (options.orbit) {
+    scene.cameras = {
+        orbit_camera(scene_stats(scene, options.load.limits.instances).bounds, *options.orbit, options.orbit_fov_deg)};
+  } else if (asset && add_default_camera(scene)) {
+    ready.notes.push_back(path + " has no camera: added one framing the scene's bounds");
+  }
+  if (options.adjust_camera) options.adjust_camera(scene);
+  if (asset && add_light_rig(scene, options.camera))
+    ready.notes.push_back(path + " has no light: added the default light rig (a head-light, a key and a fill) " +
+                          "around the camera");
+  ready.color.scene = scene_colors(ready.format);
+  ready.render = default_render_options(ready.format);
+  ready.render.camera = options.camera;
+  return ready;
+}
+
+}  // namespace rayform

@@ -1,0 +1,71 @@
+// Loading a file ready to render, with the defaults that make a good first
+// picture of an asset: one call for a program that renders any model.
+//
+//   ReadyScene s = load_ready_scene("duck.obj");
+//   PreparedScene p = prepare_scene(s.scene);
+//   RenderResult r = render(p, s.render);
+//   write_color_image("duck.png", r, s.color);
+//
+// Asset formats (OBJ, glTF) often carry no camera or no light: a file without
+// a camera gets the default camera, which frames the scene's bounds
+// (scene/scene_defaults.h: add_default_camera); one without lights gets the
+// default light rig fixed to the camera rendered (add_light_rig: a head-light,
+// a key and a fill). Course scenes are left as the course defines them (they
+// always have a camera; without lights their ambient light is white). What
+// was added is reported in `notes`; the library prints nothing.
+#pragma once
+
+#include "rayform/importers/scene_io.h"
+#include "rayform/render/color_output.h"
+#include "rayform/render/render.h"
+#include "rayform/scene/scene_defaults.h"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rayform {
+
+// Width and height of an asset's picture, pixels, when the caller gives none.
+// Course scenes keep RenderOptions{}'s 200x200, the course's size.
+inline constexpr int asset_image_size = 512;
+
+// The render options a scene of `format` starts from: RenderOptions{} with
+// the default size of the format.
+RenderOptions default_render_options(SceneFormat format);
+
+// What the colours of a scene of `format` mean: course scenes produce values
+// for the screen as they are, assets linear light (render/color_output.h).
+SceneColors scene_colors(SceneFormat format);
+
+struct ReadyOptions {
+  LoadOptions load;
+  // The camera rendered (RenderOptions::camera): the light rig follows it.
+  int camera = 0;
+  // When set, the file's cameras are replaced by one framing camera at this
+  // orbit around the scene's bounds (orbit_camera with orbit_fov_deg), any
+  // format; no default camera is then added.
+  std::optional<Orbit> orbit;
+  float orbit_fov_deg = default_camera_fov_deg;
+  // Called once the camera is in place (the file's, the default or the
+  // orbit's) and before the lights are added, to change the cameras (the
+  // command line's --look-from, --look-at, --up, --fov); may throw.
+  std::function<void(Scene&)> adjust_camera;
+};
+
+struct ReadyScene : LoadedScene {
+  // What the defaults added, one line each naming the file ("duck.obj has no
+  // camera: added one framing the scene's bounds").
+  std::vector<std::string> notes;
+  // How to write its pictures (write_color_image): what its colours mean.
+  ColorOutput color;
+  // default_render_options(format), with `camera` set to ReadyOptions::camera.
+  RenderOptions render;
+};
+
+// load_scene, then the defaults above. Throws rayform::Error as load_scene
+// does, or for an orbit orbit_camera refuses.
+ReadyScene load_ready_scene(const std::string& path, const ReadyOptions& options = {});
+
+}  // namespace rayform

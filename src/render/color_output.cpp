@@ -1,0 +1,69 @@
+#include "rayform/render/color_output.h"
+
+#include "rayform/image/color.h"
+#include "rayform/render/aov_images.h"
+#include "rayform/scene/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rayform {
+
+bool writes_srgb(const ColorOutput& output, const std::string& path) {
+  switch (output.encoding) {
+    case ColorEncoding::raw: return false;
+    case ColorEncoding::srgb: return true;
+    case ColorEncoding::automatic: break;
+  }
+  return output.scene == SceneColors::linear && !is_float_image_path(path);
+}
+
+ColorFormat render_color_format(const ColorOutput& output, const std::string& path, const std::string& albedo_path) {
+  if (!is_8bit_image_path(path)) return ColorFormat::linear_float;
+  const bool srgb = writes_srgb(output, path);
+  if (!albedo_path.empty() && (!is_8bit_image_path(albedo_path) || writes_srgb(output, albedo_path) != srgb))
+    return ColorFormat::linear_float;
+  return srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
+}
+
+void encode_srgb_in_place(Image& image) {
+  const int colour_channels = std::min(image.channels, 3);
+  const size_t step = size_t(std::max(image.channels, 1));
+  for (size_t i = 0; i + step <= image.pixels.size(); i += step)
+    for (int c = 0; c < colour_channels; ++c) {
+      float& v = image.pixels[i + size_t(c)];
+      v = linear_to_srgb(std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f));
+    }
+}
+
+std::string write_color_temporary(const std::string& path, RenderResult& result, ColorPlane plane,
+                                  const ColorOutput& output) {
+  const char* what = plane == ColorPlane::color ? "colour" : "albedo";
+  const bool srgb = writes_srgb(output, path);
+  const bool with_alpha = plane == ColorPlane::color && !result.coverage.empty();
+  if (result.color_format != ColorFormat::linear_float) {
+    const Image8& bytes = plane == ColorPlane::color ? result.color8 : result.albedo8;
+    if (bytes.pixels.empty()) throw Error(path + ": the render has no " + what + " to write");
+    if (!is_8bit_image_path(path) || srgb != (result.color_format == ColorFormat::srgb8))
+      throw Error(path + ": the render's " + what + " holds 8-bit " +
+                  (result.color_format == ColorFormat::srgb8 ? "sRGB" : "raw") +
+                  " values, not what this file needs (render with render_color_format)");
+    if (with_alpha) return write_image8_temporary(path, color8_with_alpha(result));
+    return write_image8_temporary(path, bytes);
+  }
+  Image& image = plane == ColorPlane::color ? result.color : result.albedo;
+  if (image.empty()) throw Error(path + ": the render has no " + what + " to write");
+  if (with_alpha) {
+    Image rgba = color_with_alpha(result);
+    if (srgb) encode_srgb_in_place(rgba);
+    return write_image_temporary(path, rgba);
+  }
+  if (srgb) encode_srgb_in_place(image);
+  return write_image_temporary(path, image);
+}
+
+void write_color_image(const std::string& path, RenderResult& result, const ColorOutput& output) {
+  commit_temporary(write_color_temporary(path, result, ColorPlane::color, output), path);
+}
+
+}  // namespace rayform
