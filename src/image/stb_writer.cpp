@@ -51,8 +51,17 @@ bool stb_write8(const std::string& path, const std::string& ext, const Image8& i
 
 bool stb_write(const std::string& path, const std::string& ext, const Image& img, std::string* error) {
   if (ext == ".hdr") {
+    // Radiance RGBE holds no negative values (stb writes -0.1 as 1.906):
+    // they are written as 0.
+    const float* data = img.pixels.data();
+    std::vector<float> non_negative;
+    if (std::any_of(img.pixels.begin(), img.pixels.end(), [](float v) { return !(v >= 0.f); })) {
+      non_negative.resize(img.pixels.size());
+      for (size_t i = 0; i < non_negative.size(); ++i) non_negative[i] = img.pixels[i] >= 0.f ? img.pixels[i] : 0.f;
+      data = non_negative.data();
+    }
     std::vector<unsigned char> bytes;
-    const int ok = stbi_write_hdr_to_func(append_bytes, &bytes, img.width, img.height, img.channels, img.pixels.data());
+    const int ok = stbi_write_hdr_to_func(append_bytes, &bytes, img.width, img.height, img.channels, data);
     return write_encoded(path, ok, bytes, error);
   }
   Image8 q{img.width, img.height, img.channels, std::vector<unsigned char>(img.pixels.size())};

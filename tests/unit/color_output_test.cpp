@@ -65,11 +65,12 @@ TEST(ColorOutput, LinearSceneFloatFilesHoldLinearUnclampedValues) {
   EXPECT_EQ(written((dir / "a.exr").string(), linear), values);  // 2.5 and -0.1 exactly, not clamped
   EXPECT_EQ(written((dir / "a.tif").string(), linear), values);
   // Radiance HDR: 8-bit mantissas under a shared exponent. It holds no
-  // negatives (stb writes -0.1 as 1.906: not checked here).
+  // negatives: -0.1 is written as 0 (stb alone wrote 1.906).
   const std::vector<float> hdr = written((dir / "a.hdr").string(), linear);
   ASSERT_EQ(hdr.size(), values.size());
   EXPECT_EQ(hdr[0], 2.5f);
   EXPECT_NEAR(hdr[1], 0.5f, 0.5f / 128);
+  EXPECT_EQ(hdr[3], 0.f);
   EXPECT_EQ(hdr[4], 1.f);
   fs::remove_all(dir);
 }
