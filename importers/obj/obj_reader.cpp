@@ -1,6 +1,9 @@
 #include "rayform/importers/obj/obj_reader.h"
 
+#include "rayform/importers/obj/mtl_library.h"
+#include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/obj_side_files.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
 #include "rayform/scene/error.h"
@@ -24,6 +27,15 @@
 namespace rayform {
 namespace fs = std::filesystem;
 namespace {
+
+using obj::BadIndex;
+using obj::find_bad_index;
+using obj::materials_with_kd;
+using obj::MtlLibrary;
+using obj::PreloadedMaterials;
+using obj::resolve_beside;
+using obj::Resolved;
+using obj::split_mtllib;
 
 // Grey of the material given to faces without a (known) material: light
 // enough to read, dark enough that a head-on light does not clip it.
@@ -55,163 +67,6 @@ std::string trim(std::string s) {
   if (b == std::string::npos) return {};
   size_t e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
-}
-
-bool ends_with_ci(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  for (size_t i = 0; i < suffix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i]) return false;
-  return true;
-}
-
-// Names written on Windows ('\' separators, ".\x.jpg") as a portable path.
-fs::path portable_path(std::string name) {
-  std::replace(name.begin(), name.end(), '\\', '/');
-  return fs::path(name).lexically_normal();
-}
-
-// A file named inside another file: relative to that file's folder (or
-// absolute) as written; failing that, its bare name in that folder (files
-// are often moved next to the model while the names keep an old layout).
-struct Resolved {
-  fs::path path;
-  bool found = false;
-  bool by_name_only = false;
-};
-
-Resolved resolve_beside(const fs::path& dir, const std::string& name) {
-  Resolved r;
-  fs::path p = portable_path(name);
-  if (p.empty()) return r;
-  std::error_code ec;
-  fs::path as_written = p.is_absolute() ? p : dir / p;
-  if (fs::is_regular_file(as_written, ec)) {
-    r.path = as_written;
-    r.found = true;
-    return r;
-  }
-  fs::path by_name = dir / p.filename();
-  if (!p.filename().empty() && fs::is_regular_file(by_name, ec)) {
-    r.path = by_name;
-    r.found = true;
-    r.by_name_only = true;
-  }
-  return r;
-}
-
-// The files an `mtllib` line names. The line may name several files, and a
-// name may contain spaces ("mtllib box mtllib.mtl"): the whole rest of the
-// line is tried first, then names split at whitespace and re-joined up to
-// each ".mtl".
-std::vector<std::string> split_mtllib(const std::string& rest, const fs::path& dir) {
-  if (resolve_beside(dir, rest).found) return {rest};
-  std::vector<std::string> out;
-  std::istringstream ss(rest);
-  std::string token, pending;
-  while (ss >> token) {
-    pending = pending.empty() ? token : pending + " " + token;
-    if (ends_with_ci(pending, ".mtl")) {
-      out.push_back(pending);
-      pending.clear();
-    }
-  }
-  if (!pending.empty()) out.push_back(pending);
-  return out;
-}
-
-struct MtlLibrary {
-  std::vector<tinyobj::material_t> materials;
-  std::map<std::string, int> names;
-  std::vector<fs::path> dirs;  // per material: folder of its .mtl (textures resolve there)
-  std::vector<bool> has_kd;    // per material: the .mtl gave Kd
-};
-
-// Scans MTL text for the materials that set Kd (tinyobjloader does not say),
-// following its reading of `newmtl`: the name is the rest of the line.
-std::set<std::string> materials_with_kd(const std::string& text) {
-  std::set<std::string> out;
-  std::istringstream in(text);
-  std::string line, current;
-  while (std::getline(in, line)) {
-    size_t e = line.find_last_not_of(" \t\r");
-    line = e == std::string::npos ? std::string() : line.substr(0, e + 1);
-    size_t b = line.find_first_not_of(" \t");
-    if (b == std::string::npos) continue;
-    std::string t = line.substr(b);
-    if (t.size() > 7 && t.compare(0, 6, "newmtl") == 0 && (t[6] == ' ' || t[6] == '\t')) current = t.substr(7);
-    else if (t.size() > 2 && t[0] == 'K' && t[1] == 'd' && (t[2] == ' ' || t[2] == '\t')) out.insert(current);
-  }
-  return out;
-}
-
-// Hands tinyobjloader the materials read beforehand from every mtllib (its
-// own reader would take only the first file of a line and no spaces or '\').
-class PreloadedMaterials : public tinyobj::MaterialReader {
- public:
-  explicit PreloadedMaterials(const MtlLibrary& lib) : lib_(lib) {}
-  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* names,
-                  std::string*, std::string*) override {
-    if (!given_) {
-      *materials = lib_.materials;
-      *names = lib_.names;
-      given_ = true;
-    }
-    return true;
-  }
-
- private:
-  const MtlLibrary& lib_;
-  bool given_ = false;
-};
-
-// Where an OBJ index goes wrong, for messages: the first face corner (line
-// and 1-based position in the face) whose index of `kind` (0 vertex, 1 uv,
-// 2 normal) names no element. Counts elements as they are declared, as OBJ
-// resolves relative indices.
-struct BadIndex {
-  size_t line = 0;
-  long index = 0;
-  size_t count = 0;
-};
-
-bool find_bad_index(const std::string& text, int kind, BadIndex* bad) {
-  std::istringstream in(text);
-  std::string line;
-  size_t counts[3] = {0, 0, 0};
-  size_t line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    size_t b = line.find_first_not_of(" \t");
-    if (b == std::string::npos) continue;
-    const char* t = line.c_str() + b;
-    if (t[0] == 'v' && (t[1] == ' ' || t[1] == '\t')) counts[0]++;
-    else if (t[0] == 'v' && t[1] == 't' && (t[2] == ' ' || t[2] == '\t')) counts[1]++;
-    else if (t[0] == 'v' && t[1] == 'n' && (t[2] == ' ' || t[2] == '\t')) counts[2]++;
-    else if (t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
-      std::istringstream fs_(std::string(t + 2));
-      std::string corner;
-      while (fs_ >> corner) {
-        // corner: v, v/t, v//n, v/t/n
-        std::string parts[3];
-        size_t s1 = corner.find('/');
-        parts[0] = corner.substr(0, s1);
-        if (s1 != std::string::npos) {
-          size_t s2 = corner.find('/', s1 + 1);
-          parts[1] = corner.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
-          if (s2 != std::string::npos) parts[2] = corner.substr(s2 + 1);
-        }
-        if (parts[kind].empty()) continue;
-        long i = std::strtol(parts[kind].c_str(), nullptr, 10);
-        long n = long(counts[kind]);
-        bool ok = (i > 0 && i <= n) || (i < 0 && n + i >= 0);
-        if (!ok) {
-          *bad = BadIndex{line_no, i, counts[kind]};
-          return true;
-        }
-      }
-    }
-  }
-  return false;
 }
 
 struct VertexKey {

@@ -1,0 +1,23 @@
+#include "rayform/importers/obj/mtl_library.h"
+
+#include <sstream>
+
+namespace rayform::obj {
+
+std::set<std::string> materials_with_kd(const std::string& text) {
+  std::set<std::string> out;
+  std::istringstream in(text);
+  std::string line, current;
+  while (std::getline(in, line)) {
+    size_t e = line.find_last_not_of(" \t\r");
+    line = e == std::string::npos ? std::string() : line.substr(0, e + 1);
+    size_t b = line.find_first_not_of(" \t");
+    if (b == std::string::npos) continue;
+    std::string t = line.substr(b);
+    if (t.size() > 7 && t.compare(0, 6, "newmtl") == 0 && (t[6] == ' ' || t[6] == '\t')) current = t.substr(7);
+    else if (t.size() > 2 && t[0] == 'K' && t[1] == 'd' && (t[2] == ' ' || t[2] == '\t')) out.insert(current);
+  }
+  return out;
+}
+
+}  // namespace rayform::obj
