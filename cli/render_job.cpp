@@ -159,15 +159,13 @@ void run_render_job(const RenderJob& job) {
   ReadyScene loaded = load_ready_scene(job.input, ready_options(job));
   for (const std::string& w : loaded.warnings) warn(w);
   for (const std::string& n : loaded.notes) note(n);
+  const ColorOutput color{loaded.color.scene, job.color};
   if (job.background) {
-    // Display values: converted to linear where the scene's colours are
-    // linear and shown through sRGB (any file: a float file holds linear
-    // values a viewer encodes), kept where they are written as they are.
-    const bool display_srgb = job.color == ColorEncoding::srgb ||
-                              (job.color == ColorEncoding::automatic && loaded.color.scene == SceneColors::linear);
+    // Display values: converted to linear where the pictures are seen
+    // through sRGB, kept where they are written as they are.
     vec3& b = loaded.scene.background.color;
     b = *job.background;
-    if (display_srgb)
+    if (shown_through_srgb(color))
       for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
   }
   double load_s = seconds_since(t_load);
@@ -179,7 +177,6 @@ void run_render_job(const RenderJob& job) {
 
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
-  const ColorOutput color{loaded.color.scene, job.color};
   RenderOptions ro = job_render_options(job);
   Progress progress("rendering", job.quiet);
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };

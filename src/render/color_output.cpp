@@ -9,13 +9,17 @@
 
 namespace rayform {
 
-bool writes_srgb(const ColorOutput& output, const std::string& path) {
+bool shown_through_srgb(const ColorOutput& output) {
   switch (output.encoding) {
     case ColorEncoding::raw: return false;
     case ColorEncoding::srgb: return true;
     case ColorEncoding::automatic: break;
   }
-  return output.scene == SceneColors::linear && !is_float_image_path(path);
+  return output.scene == SceneColors::linear;
+}
+
+bool writes_srgb(const ColorOutput& output, const std::string& path) {
+  return shown_through_srgb(output) && (output.encoding == ColorEncoding::srgb || !is_float_image_path(path));
 }
 
 ColorFormat render_color_format(const ColorOutput& output, const std::string& path, const std::string& albedo_path) {

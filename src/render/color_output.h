@@ -32,7 +32,14 @@ struct ColorOutput {
   ColorEncoding encoding = ColorEncoding::automatic;
 };
 
-// Whether the values written to `path` are sRGB-encoded.
+// Whether the pictures are seen through sRGB: encoded into 8-bit files, or
+// held linear in float files that a viewer encodes (encoding srgb, or
+// automatic for a linear scene). Display values given for such a scene (a
+// background colour) are converted to linear.
+bool shown_through_srgb(const ColorOutput& output);
+
+// Whether the values written to `path` are sRGB-encoded: shown through sRGB
+// and, unless the encoding is forced, an 8-bit file.
 bool writes_srgb(const ColorOutput& output, const std::string& path);
 
 // The RenderOptions::color_format for writing colour to `path` and, unless
