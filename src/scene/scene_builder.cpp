@@ -128,6 +128,14 @@ void SceneBuilder::check_parent(const char* call, int parent) const {
                    std::to_string(max_node_depth) + ")");
 }
 
+int SceneBuilder::append_node(const Node& node, int parent) {
+  scene_.nodes.push_back(node);
+  const int handle = int(scene_.nodes.size()) - 1;
+  scene_.nodes[size_t(parent)].children.push_back(handle);
+  depth_.push_back(depth_[size_t(parent)] + 1);
+  return handle;
+}
+
 int SceneBuilder::add_transform(const mat4& local, int parent) {
   const char* call = "add_transform";
   check_parent(call, parent);
@@ -141,11 +149,7 @@ int SceneBuilder::add_transform(const mat4& local, int parent) {
   Node n;
   n.kind = Node::Kind::transform;
   n.local = local;
-  scene_.nodes.push_back(n);
-  const int handle = int(scene_.nodes.size()) - 1;
-  scene_.nodes[size_t(parent)].children.push_back(handle);
-  depth_.push_back(depth_[size_t(parent)] + 1);
-  return handle;
+  return append_node(n, parent);
 }
 
 int SceneBuilder::add_instance(Shape shape, int material, int parent) {
@@ -170,11 +174,7 @@ int SceneBuilder::add_instance(Shape shape, int material, int parent) {
   n.shape_kind = shape.kind;
   n.shape = shape.index;
   n.material = material;
-  scene_.nodes.push_back(n);
-  const int handle = int(scene_.nodes.size()) - 1;
-  scene_.nodes[size_t(parent)].children.push_back(handle);
-  depth_.push_back(depth_[size_t(parent)] + 1);
-  return handle;
+  return append_node(n, parent);
 }
 
 int SceneBuilder::add_camera(const Camera& c) {

@@ -77,6 +77,8 @@ class SceneBuilder {
   Scene scene_;
   std::vector<int> depth_;  // per node: its depth in the tree (root = 1)
   void check_parent(const char* call, int parent) const;
+  // Adds `node` as the last child of `parent` (checked already); returns its handle.
+  int append_node(const Node& node, int parent);
 };
 
 }  // namespace rayform
