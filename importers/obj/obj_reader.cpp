@@ -459,11 +459,17 @@ class ObjSceneBuilder {
     Mesh mesh;
     mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
     mesh.source_path = path_;
-    // Corners with only a position (the common case of files without uvs and
-    // normals) are looked up by position index; the others by their key.
-    std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertices;
+    // A corner's vertex is found by its key (position, uv, normal). The first
+    // key met at a position is kept beside the position (most positions have
+    // one key: a uv seam or a crease gives a few more), the others in a map.
+    // Vertices are made in the order their keys are first met either way.
     constexpr uint32_t unseen = ~0u;
-    std::vector<uint32_t> position_only(position_count, unseen);
+    struct FirstKey {
+      uint32_t vertex = unseen;
+      int t = -1, n = -1;
+    };
+    std::vector<FirstKey> first_key(position_count);
+    std::unordered_map<VertexKey, uint32_t, VertexKeyHash> other_keys;
     std::vector<int> face_mats;
     face_mats.reserve(faces);
     mesh.indices.reserve(faces * 3);
@@ -487,13 +493,16 @@ class ObjSceneBuilder {
         const uint32_t next = uint32_t(mesh.positions.size());
         uint32_t vertex;
         bool inserted;
-        if (t < 0 && nkey == -1) {
-          uint32_t& slot = position_only[size_t(ix.vertex_index)];
-          inserted = slot == unseen;
-          if (inserted) slot = next;
-          vertex = slot;
+        FirstKey& fk = first_key[size_t(ix.vertex_index)];
+        if (fk.vertex == unseen) {
+          fk = FirstKey{next, t, nkey};
+          inserted = true;
+          vertex = next;
+        } else if (fk.t == t && fk.n == nkey) {
+          inserted = false;
+          vertex = fk.vertex;
         } else {
-          auto [it, added] = vertices.try_emplace(VertexKey{ix.vertex_index, t, nkey}, next);
+          auto [it, added] = other_keys.try_emplace(VertexKey{ix.vertex_index, t, nkey}, next);
           inserted = added;
           vertex = it->second;
         }
