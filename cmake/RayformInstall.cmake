@@ -33,7 +33,8 @@ endif()
 set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_kernel.h src/accel/mesh_accel_packet8.h
                             importers/gltf/gltf_accessors.h importers/gltf/gltf_builder.h
                             importers/gltf/gltf_file_access.h importers/gltf/gltf_scene_builder.h
-                            importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h)
+                            importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h
+                            importers/obj/obj_polygon_split.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})
   string(REPLACE "." "\\." _h "${_h}")

@@ -1,5 +1,6 @@
 #include "rayform/importers/obj/obj_parallel_parse.h"
 
+#include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
 #include <tbb/parallel_for.h>
@@ -24,14 +25,18 @@ struct ChunkScan {
   bool supported = true;
   Line first_mtllib, last_usemtl, last_group, last_smoothing;
   std::vector<size_t> section_faces{0};  // faces before the chunk's first g/o line, then after each
+  size_t vertex_lines = 0;               // `v` lines
+  // Per face of more than three corners, in order: the chunk's `v` lines before it.
+  std::vector<size_t> polygon_vertices_before;
 };
 
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 
-// A face line (after "f "): true when it has three corners, no '-' and no
-// number of more than 9 digits (atoi could wrap it to a negative index).
-bool plain_triangle(std::string_view s) {
-  if (s.find('-') != std::string_view::npos) return false;
+// A face line (after "f "): its number of corners, or 0 when it has a '-',
+// a number of more than 9 digits (atoi could wrap it to a negative index) or
+// more corners than LoadObj's unsigned char count of a face's corners holds.
+int plain_face_corners(std::string_view s) {
+  if (s.find('-') != std::string_view::npos) return 0;
   int corners = 0;
   const size_t n = s.size();
   for (size_t i = 0;; ++corners) {
@@ -42,11 +47,33 @@ bool plain_triangle(std::string_view s) {
     if (i - start < 10) continue;
     for (size_t k = start, digits = 0; k < i; ++k) {
       digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
-      if (digits > 9) return false;
+      if (digits > 9) return 0;
     }
   }
-  return corners == 3;
+  return corners <= 255 ? corners : 0;
 }
+
+// Calls visit(line, t) for each line of [begin, end) (its '\r\n' or '\n'
+// end taken off), t being the line without its leading blanks, as LoadObj
+// reads it, until visit returns false.
+template <class Visit>
+void for_each_line(std::string_view text, size_t begin, size_t end, Visit visit) {
+  for (size_t p = begin; p < end;) {
+    const char* nl = static_cast<const char*>(std::memchr(text.data() + p, '\n', end - p));
+    const size_t line_end = nl ? size_t(nl - text.data()) : end;
+    size_t e = line_end;
+    if (e > p && text[e - 1] == '\r') --e;
+    const Line line{text.substr(p, e - p), p};
+    p = nl ? line_end + 1 : end;
+    std::string_view t = line.text;
+    size_t lead = 0;
+    while (lead < t.size() && is_space(t[lead])) ++lead;
+    t.remove_prefix(lead);
+    if (!visit(line, t)) return;
+  }
+}
+
+bool is_vertex_line(std::string_view t) { return t.size() > 1 && t[0] == 'v' && is_space(t[1]); }
 
 // Sorts each line of [begin, end) by the tests LoadObj makes, in its order.
 ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
@@ -55,27 +82,21 @@ ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
   if (chunk.find('\0') != std::string_view::npos) scan.supported = false;
   for (size_t r = chunk.find('\r'); scan.supported && r != std::string_view::npos; r = chunk.find('\r', r + 1))
     if (r + 1 == chunk.size() || chunk[r + 1] != '\n') scan.supported = false;  // a lone '\r' ends a line too
-  size_t p = begin;
-  while (scan.supported && p < end) {
-    const char* nl = static_cast<const char*>(std::memchr(text.data() + p, '\n', end - p));
-    const size_t line_end = nl ? size_t(nl - text.data()) : end;
-    size_t e = line_end;
-    if (e > p && text[e - 1] == '\r') --e;
-    const Line line{text.substr(p, e - p), p};
-    p = nl ? line_end + 1 : end;
-
-    std::string_view t = line.text;
-    size_t lead = 0;
-    while (lead < t.size() && is_space(t[lead])) ++lead;
-    t.remove_prefix(lead);
+  if (!scan.supported) return scan;
+  for_each_line(text, begin, end, [&](const Line& line, std::string_view t) {
     auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
-    if (t.empty() || t[0] == '#') continue;
-    if (t[0] == 'v' && is_space(at(1))) continue;
-    if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) continue;
+    if (t.empty() || t[0] == '#') return true;
+    if (is_vertex_line(t)) {
+      ++scan.vertex_lines;
+      return true;
+    }
+    if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) return true;
     if ((t[0] == 'v' && at(1) == 'w' && is_space(at(2))) || ((t[0] == 'l' || t[0] == 'p') && is_space(at(1)))) {
       scan.supported = false;  // skin weights, lines, points
     } else if (t[0] == 'f' && is_space(at(1))) {
-      if (!plain_triangle(t.substr(2))) scan.supported = false;
+      const int corners = plain_face_corners(t.substr(2));
+      if (corners < 3) scan.supported = false;
+      if (corners > 3) scan.polygon_vertices_before.push_back(scan.vertex_lines);
       ++scan.section_faces.back();
     } else if (t.compare(0, 6, "usemtl") == 0) {
       scan.last_usemtl = line;
@@ -89,7 +110,8 @@ ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
     } else if (t[0] == 's' && is_space(at(1))) {
       scan.last_smoothing = line;
     }
-  }
+    return scan.supported;
+  });
   return scan;
 }
 
@@ -149,21 +171,67 @@ struct ChunkResult {
   std::string warn;
 };
 
-// The chunk's shapes are those of its sections with faces, each of triangles only.
+// The chunk's shapes are those of its sections with faces, each face of
+// three corners or more, and its vertices those of its `v` lines.
 bool shapes_match_scan(const ChunkResult& r, const ChunkScan& s) {
-  size_t next = 0;
+  if (r.attrib.vertices.size() != 3 * s.vertex_lines) return false;
+  size_t next = 0, polygons = 0;
   for (size_t faces : s.section_faces) {
     if (faces == 0) continue;
     if (next == r.shapes.size()) return false;
     const tinyobj::mesh_t& m = r.shapes[next++].mesh;
-    if (m.num_face_vertices.size() != faces || m.indices.size() != 3 * faces || m.material_ids.size() != faces)
-      return false;
-    if (std::any_of(m.num_face_vertices.begin(), m.num_face_vertices.end(), [](auto n) { return n != 3; }))
-      return false;
+    if (m.num_face_vertices.size() != faces || m.material_ids.size() != faces) return false;
+    size_t corners = 0;
+    for (const unsigned char n : m.num_face_vertices) {
+      if (n < 3) return false;
+      corners += n;
+      polygons += n > 3;
+    }
+    if (m.indices.size() != corners) return false;
   }
   for (const tinyobj::shape_t& shape : r.shapes)
     if (!shape.lines.indices.empty() || !shape.points.indices.empty() || !shape.mesh.tags.empty()) return false;
-  return next == r.shapes.size();
+  return next == r.shapes.size() && polygons == s.polygon_vertices_before.size();
+}
+
+// Whether every corner of the chunk's polygons names a vertex declared before
+// the polygon's line. LoadObj splits a polygon when its group ends, by the
+// vertices read by then, and drops one naming a later vertex; a polygon that
+// names only earlier ones is split alike whole or in chunks.
+bool polygons_name_earlier_vertices(const ChunkResult& r, const ChunkScan& s, size_t first_vertex) {
+  size_t polygon = 0;
+  for (const tinyobj::shape_t& shape : r.shapes) {
+    size_t at = 0;
+    for (const unsigned char n : shape.mesh.num_face_vertices) {
+      if (n > 3) {
+        const size_t declared = first_vertex + s.polygon_vertices_before[polygon++];
+        for (size_t k = 0; k < n; ++k)
+          if (size_t(shape.mesh.indices[at + k].vertex_index) >= declared) return false;
+      }
+      at += n;
+    }
+  }
+  return true;
+}
+
+// The text of the `v` lines that declared `wanted` (sorted vertex numbers,
+// 0-based), found by counting the `v` lines of the chunks that hold them.
+std::vector<std::string_view> vertex_line_texts(std::string_view text, const std::vector<size_t>& starts,
+                                                const std::vector<size_t>& first_vertex,
+                                                const std::vector<int>& wanted) {
+  std::vector<std::string_view> lines(wanted.size());
+  size_t next = 0;
+  for (size_t k = 0; k + 1 < starts.size() && next < wanted.size(); ++k) {
+    if (size_t(wanted[next]) >= first_vertex[k + 1]) continue;
+    size_t vertex = first_vertex[k];
+    for_each_line(text, starts[k], starts[k + 1], [&](const Line&, std::string_view t) {
+      if (!is_vertex_line(t)) return true;
+      if (size_t(wanted[next]) == vertex) lines[next++] = t;
+      ++vertex;
+      return next < wanted.size() && size_t(wanted[next]) < first_vertex[k + 1];
+    });
+  }
+  return lines;
 }
 
 template <class T>
@@ -181,6 +249,7 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
   const std::vector<std::string> prefixes = chunk_prefixes(scans);
 
+  // Each chunk with its polygons left whole (split below, once every position is known).
   std::vector<ChunkResult> results(n);
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     ChunkResult& r = results[k];
@@ -198,16 +267,58 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   ObjParse& o = *out;
   o = ObjParse{};
   bool all_colors = true;
-  size_t groups_before = 0;  // g/o lines before the chunk: the section its first faces belong to
-  size_t open_section = ~size_t(0);
+  std::vector<size_t> first_vertex(n + 1, 0);  // the first vertex of each chunk (0-based), then the count
   for (size_t k = 0; k < n; ++k) {
-    ChunkResult& r = results[k];
+    const ChunkResult& r = results[k];
     append(o.attrib.vertices, r.attrib.vertices);
     append(o.attrib.normals, r.attrib.normals);
     append(o.attrib.texcoords, r.attrib.texcoords);
     all_colors &= r.attrib.colors.size() == r.attrib.vertices.size();
     if (all_colors) append(o.attrib.colors, r.attrib.colors);
     o.warn += r.warn;
+    first_vertex[k + 1] = first_vertex[k] + scans[k].vertex_lines;
+  }
+  if (!all_colors) o.attrib.colors.clear();
+  // LoadObj warns of a face index past the last vertex (the reader makes that an error).
+  const size_t vertex_count = first_vertex[n];
+  std::vector<int> large_polygon_vertices;  // of polygons of five or more corners
+  for (size_t k = 0; k < n; ++k) {
+    for (const tinyobj::shape_t& s : results[k].shapes) {
+      for (const tinyobj::index_t& ix : s.mesh.indices)
+        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) return false;
+      if (scans[k].polygon_vertices_before.empty()) continue;
+      size_t at = 0;
+      for (const unsigned char corners : s.mesh.num_face_vertices) {
+        if (corners > 4)
+          for (size_t c = 0; c < corners; ++c) large_polygon_vertices.push_back(s.mesh.indices[at + c].vertex_index);
+        at += corners;
+      }
+    }
+    if (!polygons_name_earlier_vertices(results[k], scans[k], first_vertex[k])) return false;
+  }
+
+  // Polygons split as LoadObj splits them.
+  std::sort(large_polygon_vertices.begin(), large_polygon_vertices.end());
+  large_polygon_vertices.erase(std::unique(large_polygon_vertices.begin(), large_polygon_vertices.end()),
+                               large_polygon_vertices.end());
+  const std::vector<std::string_view> large_polygon_lines =
+      vertex_line_texts(text, starts, first_vertex, large_polygon_vertices);
+  const VertexLineText vertex_line = [&](int v) {
+    auto it = std::lower_bound(large_polygon_vertices.begin(), large_polygon_vertices.end(), v);
+    return large_polygon_lines[size_t(it - large_polygon_vertices.begin())];
+  };
+  std::vector<uint8_t> split_ok(n, 1);
+  tbb::parallel_for(size_t(0), n, [&](size_t k) {
+    if (scans[k].polygon_vertices_before.empty()) return;
+    for (tinyobj::shape_t& s : results[k].shapes)
+      if (!split_polygons_like_loadobj(&s.mesh, o.attrib.vertices, vertex_line)) split_ok[k] = 0;
+  });
+  if (std::find(split_ok.begin(), split_ok.end(), 0) != split_ok.end()) return false;
+
+  size_t groups_before = 0;  // g/o lines before the chunk: the section its first faces belong to
+  size_t open_section = ~size_t(0);
+  for (size_t k = 0; k < n; ++k) {
+    ChunkResult& r = results[k];
     size_t next = 0;
     for (size_t j = 0; j < scans[k].section_faces.size(); ++j) {
       if (scans[k].section_faces[j] == 0) continue;
@@ -226,12 +337,6 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     }
     groups_before += scans[k].section_faces.size() - 1;
   }
-  if (!all_colors) o.attrib.colors.clear();
-  // LoadObj warns of a face index past the last vertex (the reader makes that an error).
-  const int vertex_count = int(o.attrib.vertices.size() / 3);
-  for (const tinyobj::shape_t& s : o.shapes)
-    for (const tinyobj::index_t& ix : s.mesh.indices)
-      if (ix.vertex_index < 0 || ix.vertex_index >= vertex_count) return false;
   return true;
 }
 

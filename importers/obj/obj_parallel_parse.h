@@ -3,22 +3,26 @@
 // false) over the whole text, or not at all.
 //
 // The text is cut at line ends into chunks; a quick scan of each chunk (line
-// kinds only, no numbers) finds the state lines (mtllib, usemtl, g, o, s) and
-// what the stitching cannot reproduce. Each chunk is then parsed by LoadObj
-// behind copies of the state lines in force at its start (the first mtllib,
-// the last usemtl, g/o and s before it, in file order), so that its faces get
-// the material, smoothing group and shape name the whole-file parse gives
-// them; positive face indices are absolute already. The chunks' vertex
-// arrays are concatenated and their shapes joined where a `g`/`o` section
-// runs across a chunk end.
+// kinds only, no numbers) finds the state lines (mtllib, usemtl, g, o, s), the
+// `v` lines and what the stitching cannot reproduce. Each chunk is then
+// parsed by LoadObj, its polygons left whole, behind copies of the state
+// lines in force at its start (the first mtllib, the last usemtl, g/o and s
+// before it, in file order), so that its faces get the material, smoothing
+// group and shape name the whole-file parse gives them; positive face
+// indices are absolute already. The chunks' vertex arrays are concatenated,
+// the polygons split into triangles as LoadObj splits them
+// (obj_polygon_split.h: that needs the positions of their corners, which
+// another chunk may hold), and the shapes joined where a `g`/`o` section runs
+// across a chunk end.
 //
-// Falls back (returns false) where that would not be exact: polygons other
-// than triangles (LoadObj splits them by the positions of their corners,
-// which a chunk may not hold), negative (relative) indices, lines, points,
-// tags and skin weights, a lone '\r' line end or a NUL byte, faces with
-// fewer than three corners, a face index past the last vertex, any parse
-// error, and any tinyobjloader warning other than an unknown material
-// (warnings carry line numbers or depend on the order of a whole file).
+// Falls back (returns false) where that would not be exact: negative
+// (relative) indices, lines, points, tags and skin weights, a lone '\r' line
+// end or a NUL byte, faces with fewer than three corners or more than 255, a
+// face index past the last vertex, a polygon naming a vertex declared after
+// it (LoadObj splits a polygon by the vertices read when its group ends),
+// any parse error, and any tinyobjloader warning other than an unknown
+// material (warnings carry line numbers or depend on the order of a whole
+// file).
 #pragma once
 
 #include <tiny_obj_loader.h>
