@@ -156,6 +156,15 @@ struct Tracer {
   }
 };
 
+// Adaptive sampling's sums over one pixel's samples so far: all of them,
+// those that hit a surface, and the running mean and sum of squared
+// deviations (Welford) of their values in the output encoding.
+struct AdaptiveState {
+  vec3 sum{0.f}, hit_sum{0.f}, mean{0.f}, m2{0.f};
+  float covered = 0.f;
+  int n = 0;
+};
+
 struct PixelOut {
   vec3 color{0.f};
   float depth = infinity;
@@ -200,8 +209,9 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const bool grid = o.grid.on(), adaptive = !grid && o.target_error.has_value();
   // One ray through each pixel centre (the course's default): the fast paths below.
   const bool centre_only = !grid && !adaptive && o.spp <= 1 && o.sampler == PixelSampler::stratified;
-  // Grid anti-aliasing renders all tiles twice: samples, then filtered pixels.
-  const int progress_steps = grid ? 2 * tiles : tiles;
+  // Grid anti-aliasing renders all tiles twice (samples, then filtered
+  // pixels), adaptive sampling too (first rounds, then the rest).
+  const int progress_steps = grid || adaptive ? 2 * tiles : tiles;
   std::atomic<int> done{0};
   std::atomic<uint64_t> adaptive_samples{0};
   std::mutex progress_mutex;
@@ -270,35 +280,63 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
 
   // Adaptive sampling (RenderOptions::target_error): rounds of samples until
   // the standard error of the mean, per channel in the output encoding, is
-  // below the target (Welford's running variance of the encoded values).
+  // below the target (Welford's running variance of the encoded values). Two
+  // passes over the tiles: every pixel's first round (kept in
+  // adaptive_states, allocated once before the tiles), then the rest, where a
+  // pixel the first round left settled takes one more round when a neighbour
+  // (of the 8) is not settled: an edge that crosses a corner of a pixel by
+  // less than one stratum can escape its first 16 samples but not its
+  // neighbours'. The second pass reads only first-round states, so no pixel
+  // depends on the order of the tiles.
   const float target_variance = adaptive ? *o.target_error * *o.target_error : 0.f;
-  auto adaptive_pixel = [&](uint32_t pixel, float i, float j, PixelOut& px) -> uint64_t {
-    vec3 sum(0.f), hit_sum(0.f), mean(0.f), m2(0.f);
-    float covered = 0.f;
-    int n = 0;
-    while (n < o.max_spp) {
-      for (const int end = std::min(o.max_spp, n + adaptive_round_samples); n < end; ++n) {
-        const vec2 u = o.sampler == PixelSampler::random ? random_pixel_point(pixel, uint32_t(n))
-                                                         : progressive_pixel_point(pixel, uint32_t(n));
-        bool hit;
-        const vec3 c = tracer.radiance(camera_ray(frame, i + u.x - 0.5f, j + u.y - 0.5f), 0, &hit);
-        sum += c;
-        if (hit) {
-          covered += 1.f;
-          if (alpha) hit_sum += c;
-        }
-        vec3 e = c;
-        if (srgb)
-          for (int k = 0; k < 3; ++k) e[k] = linear_to_srgb(std::isnan(c[k]) ? 0.f : std::clamp(c[k], 0.f, 1.f));
-        const vec3 delta = e - mean;
-        mean += delta / float(n + 1);
-        m2 += delta * (e - mean);
+  std::vector<AdaptiveState> adaptive_states(adaptive ? size_t(width) * size_t(height) : 0);
+  auto adaptive_round = [&](AdaptiveState& st, uint32_t pixel, float i, float j) {
+    for (const int end = std::min(o.max_spp, st.n + adaptive_round_samples); st.n < end; ++st.n) {
+      const vec2 u = o.sampler == PixelSampler::random ? random_pixel_point(pixel, uint32_t(st.n))
+                                                       : progressive_pixel_point(pixel, uint32_t(st.n));
+      bool hit;
+      const vec3 c = tracer.radiance(camera_ray(frame, i + u.x - 0.5f, j + u.y - 0.5f), 0, &hit);
+      st.sum += c;
+      if (hit) {
+        st.covered += 1.f;
+        if (alpha) st.hit_sum += c;
       }
-      // Squared standard error of the mean: m2 / (n - 1) / n.
-      if (n >= 2 && std::max({m2.x, m2.y, m2.z}) < target_variance * float(n - 1) * float(n)) break;
+      vec3 e = c;
+      if (srgb)
+        for (int k = 0; k < 3; ++k) e[k] = linear_to_srgb(std::isnan(c[k]) ? 0.f : std::clamp(c[k], 0.f, 1.f));
+      const vec3 delta = e - st.mean;
+      st.mean += delta / float(st.n + 1);
+      st.m2 += delta * (e - st.mean);
     }
-    finish_samples(px, sum, hit_sum, float(n), covered);
-    return uint64_t(n);
+  };
+  // Whether the squared standard error of the mean, m2 / (n - 1) / n, is below the target's square.
+  auto settled = [&](const AdaptiveState& st) {
+    return st.n >= 2 && std::max({st.m2.x, st.m2.y, st.m2.z}) < target_variance * float(st.n - 1) * float(st.n);
+  };
+  auto adaptive_first_tile = [&](int tile) {
+    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+        adaptive_round(adaptive_states[pixel], pixel, float(x), float(height - 1 - y));
+      }
+    tile_done();
+  };
+  auto adaptive_pixel = [&](int x, int y, PixelOut& px) -> uint64_t {
+    const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+    const float i = float(x), j = float(height - 1 - y);
+    AdaptiveState st = adaptive_states[pixel];  // its first round
+    if (settled(st) && st.n < o.max_spp) {
+      bool neighbour_unsettled = false;
+      for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
+          neighbour_unsettled |= !settled(adaptive_states[size_t(ny) * size_t(width) + size_t(nx)]);
+      if (neighbour_unsettled) adaptive_round(st, pixel, i, j);
+    }
+    while (st.n < o.max_spp && !settled(st)) adaptive_round(st, pixel, i, j);
+    finish_samples(px, st.sum, st.hit_sum, float(st.n), st.covered);
+    return uint64_t(st.n);
   };
 
   auto render_tile = [&](int tile) {
@@ -377,7 +415,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             shade_primary(ray, found, hit, px);
           } else if (adaptive) {
             if (aovs) trace_primary(camera_ray(frame, i, j), px);
-            tile_samples += adaptive_pixel(pixel, i, j, px);
+            tile_samples += adaptive_pixel(x, y, px);
           } else {
             if (aovs) trace_primary(camera_ray(frame, i, j), px);
             // sum and weight over all samples; hit_sum and covered over
@@ -491,6 +529,9 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   if (grid) {
     each_tile(grid_sample_tile);
     each_tile(grid_filter_tile);
+  } else if (adaptive) {
+    each_tile(adaptive_first_tile);
+    each_tile(render_tile);
   } else {
     each_tile(render_tile);
   }

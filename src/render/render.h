@@ -47,8 +47,10 @@ struct RenderOptions {
   // adaptive_round_samples stratified samples (progressive_pixel_point, box
   // filter) until the standard error of its samples' mean, per channel and in
   // the output encoding (sRGB-encoded values 0..1 for ColorFormat::srgb8, else
-  // linear), is below target_error, or max_spp samples are taken. spp is then
-  // not used. Must be > 0.
+  // linear), is below target_error, or max_spp samples are taken; a pixel
+  // whose first round settled takes a second when one of its 8 neighbours'
+  // first round did not (edges that cross a pixel by less than a stratum).
+  // spp is then not used. Must be > 0.
   std::optional<float> target_error;
   int max_spp = 256;  // adaptive sampling's most samples per pixel (>= 1)
   // The 2012 assignment 5's 3x3-sample anti-aliasing (grid_filter.h); spp,
