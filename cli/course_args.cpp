@@ -10,9 +10,10 @@
 namespace rayform::cli {
 namespace {
 
-const std::set<std::string> course_flags = {"-input",   "-size",    "-output",  "-depth",  "-normals", "-dialect",
-                                            "-bounces", "-shadows", "-threads", "-quiet",  "-albedo",  "-jitter",
-                                            "-filter",  "-spp",     "-stats",   "-generic"};
+const std::set<std::string> course_flags = {"-input",   "-size",    "-output",       "-depth",   "-normals",
+                                            "-dialect", "-bounces", "-shadows",      "-threads", "-quiet",
+                                            "-albedo",  "-jitter",  "-filter",       "-spp",     "-stats",
+                                            "-generic", "-sampler", "-target-error", "-max-spp"};
 
 struct Args {
   const std::vector<std::string>& v;
@@ -81,9 +82,18 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     } else if (f == "-bounces") {
       job.render.bounces = a.integer(f, "a number of bounces");
     } else if (f == "-shadows") job.render.shadows = true;
-    else if (f == "-jitter") job.render.spp = std::max(job.render.spp, 16);
-    else if (f == "-filter") job.render.filter = PixelFilter::tent;
-    else if (f == "-spp") {
+    else if (f == "-jitter") job.render.grid.jitter = true;
+    else if (f == "-filter") job.render.grid.gaussian = true;
+    else if (f == "-sampler") {
+      std::string s = a.take(f, "stratified or random");
+      if (s != "stratified" && s != "random")
+        throw UsageError("-sampler expects stratified or random, got '" + s + "'");
+      job.render.sampler = s == "random" ? PixelSampler::random : PixelSampler::stratified;
+    } else if (f == "-target-error") {
+      job.render.target_error = a.real(f, "a positive error per channel");
+    } else if (f == "-max-spp") {
+      job.render.max_spp = a.integer(f, "a number of samples per pixel");
+    } else if (f == "-spp") {
       job.render.spp = a.integer(f, "a number of samples per pixel");
     } else if (f == "-threads") {
       job.render.threads = a.integer(f, "a number of threads");

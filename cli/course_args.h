@@ -1,9 +1,11 @@
 // The course's own command line, verbatim: single-dash flags in any order,
 //   -input F.txt -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
 //   [-dialect 2012|2019] [-bounces N] [-shadows] [-jitter] [-filter]
-// (plus rayform's -threads N, -spp N, -stats, -generic and -quiet). Unknown flags are errors.
-// The 2012 assignment-5 anti-aliasing flags map onto rayform's sampling:
-// -jitter = 16 jittered samples per pixel, -filter = the tent filter.
+// (plus rayform's -threads N, -spp N, -sampler stratified|random, -target-error E,
+// -max-spp N, -stats, -generic and -quiet). Unknown flags are errors.
+// The 2012 assignment-5 anti-aliasing flags are the assignment's 3x3 samples per
+// pixel (render/grid_filter.h): -jitter jitters them, -filter blurs the 3W x 3H
+// sample image with the 5-tap Gaussian; either averages each pixel's 3x3 block.
 #pragma once
 
 #include "render_job.h"

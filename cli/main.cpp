@@ -25,7 +25,8 @@ Examples:
     rayform -input scene06_bunny_1k.txt -size 200 200 -output b.png -dialect 2019
   Course flags: -input F -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
     [-albedo IMG] [-dialect 2012|2019] [-shadows] [-bounces N] [-jitter] [-filter]
-    [-spp N] [-threads N] [-stats] [-generic] [-quiet]   (README.md explains each)
+    [-spp N] [-sampler stratified|random] [-target-error E] [-max-spp N]
+    [-threads N] [-stats] [-generic] [-quiet]   (README.md explains each)
   Subcommands:
     rayform render scene.txt -o out.png --size 640x480 --depth 8:12:depth.png --normals normals.png
     rayform render duck.gltf -o duck.png --orbit 45,30      (camera around the model, which fits)

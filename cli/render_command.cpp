@@ -102,7 +102,7 @@ struct RenderArgs {
   RenderJob job;
   ReadFlags read;
   std::string size;  // empty: the default for the scene's format
-  std::string depth, dialect, filter = "box", color = "auto";
+  std::string depth, dialect, filter = "box", sampler = "stratified", color = "auto";
   std::string orbit, look_from, look_at, up, background;
   float fov = 0.f;
 };
@@ -140,6 +140,17 @@ void add_render_command(CLI::App& app) {
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
       ->check(CLI::IsMember({"box", "tent"}))
+      ->capture_default_str();
+  render
+      ->add_option("--sampler", a->sampler,
+                   "Sub-pixel positions: stratified (jittered strata) or random (independent uniform, also at 1 spp)")
+      ->check(CLI::IsMember({"stratified", "random"}))
+      ->capture_default_str();
+  render->add_option("--target-error", job.render.target_error,
+                     "Adaptive sampling: rounds of " + std::to_string(adaptive_round_samples) +
+                         " samples per pixel until the standard error of its mean is below E in every channel "
+                         "(in the output encoding), or --max-spp (replaces --spp)");
+  render->add_option("--max-spp", job.render.max_spp, "Most samples per pixel of --target-error")
       ->capture_default_str();
   render
       ->add_option("--color", a->color,
@@ -189,6 +200,7 @@ void add_render_command(CLI::App& app) {
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);
     a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
+    a->job.render.sampler = a->sampler == "random" ? PixelSampler::random : PixelSampler::stratified;
     a->job.color = a->color == "raw"    ? ColorEncoding::raw
                    : a->color == "srgb" ? ColorEncoding::srgb
                                         : ColorEncoding::automatic;

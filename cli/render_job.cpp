@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <thread>
 #include <filesystem>
@@ -29,6 +30,17 @@
 namespace rayform::cli {
 namespace fs = std::filesystem;
 namespace {
+
+// The sampling of a render for --stats: "4 spp", or the samples taken per
+// pixel on average with adaptive sampling and the 3x3 grid.
+std::string samples_text(const RenderResult& r, const RenderOptions& o) {
+  if (!o.grid.on() && !o.target_error) return std::to_string(o.spp) + " spp";
+  char text[96];
+  const double pixels = double(r.width) * double(r.height);
+  std::snprintf(text, sizeof text, "%llu samples, %.2f per pixel%s", static_cast<unsigned long long>(r.samples),
+                double(r.samples) / pixels, o.grid.on() ? ", 3x3 grid" : ", adaptive");
+  return text;
+}
 
 // Applies --look-from/--look-at/--up/--fov to the camera rendered, once the
 // file's camera, the default camera or the --frame/--orbit one is in place
@@ -201,7 +213,8 @@ void run_render_job(const RenderJob& job) {
   if (job.stats)
     std::cerr << "stats: load " << load_s << " s, prepare " << prepare_s << " s, render " << render_s << " s, write "
               << seconds_since(t_write) << " s (" << render_path_name(prepared, ro) << " path, " << ro.width << "x"
-              << ro.height << ", " << ro.spp << " spp), accel " << prepared.memory_bytes() / 1024 << " KiB\n";
+              << ro.height << ", " << samples_text(result, ro) << "), accel " << prepared.memory_bytes() / 1024
+              << " KiB\n";
 }
 
 }  // namespace rayform::cli

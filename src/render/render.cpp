@@ -1,6 +1,7 @@
 #include "rayform/render/render.h"
 
 #include "rayform/geometry/ray_offset.h"
+#include "rayform/image/color.h"
 #include "rayform/image/quantize.h"
 #include "rayform/render/camera_rays.h"
 #include "rayform/render/cube_map.h"
@@ -15,9 +16,11 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 namespace rayform {
 namespace {
@@ -153,6 +156,15 @@ struct Tracer {
   }
 };
 
+// Adaptive sampling's sums over one pixel's samples so far: all of them,
+// those that hit a surface, and the running mean and sum of squared
+// deviations (Welford) of their values in the output encoding.
+struct AdaptiveState {
+  vec3 sum{0.f}, hit_sum{0.f}, mean{0.f}, m2{0.f};
+  float covered = 0.f;
+  int n = 0;
+};
+
 struct PixelOut {
   vec3 color{0.f};
   float depth = infinity;
@@ -194,8 +206,21 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const bool alpha = o.alpha != AlphaMode::none, premultiplied = o.alpha == AlphaMode::premultiplied;
   const int ts = std::max(1, o.tile_size);
   const int tiles_x = (width + ts - 1) / ts, tiles_y = (height + ts - 1) / ts, tiles = tiles_x * tiles_y;
+  const bool grid = o.grid.on(), adaptive = !grid && o.target_error.has_value();
+  // One ray through each pixel centre (the course's default): the fast paths below.
+  const bool centre_only = !grid && !adaptive && o.spp <= 1 && o.sampler == PixelSampler::stratified;
+  // Grid anti-aliasing renders all tiles twice (samples, then filtered
+  // pixels), adaptive sampling too (first rounds, then the rest).
+  const int progress_steps = grid || adaptive ? 2 * tiles : tiles;
   std::atomic<int> done{0};
+  std::atomic<uint64_t> adaptive_samples{0};
   std::mutex progress_mutex;
+  auto tile_done = [&] {
+    if (!o.progress) return;
+    int n = ++done;
+    std::lock_guard lock(progress_mutex);
+    o.progress(float(n) / float(progress_steps));
+  };
 
   // Camera rays of a scene that is one mesh go through it eight at a time
   // (the same hits as one by one).
@@ -239,6 +264,81 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   unsigned char background8[3] = {};
   for (int k = 0; k < 3; ++k) background8[k] = quantize_sample(srgb, background.color[k]);
 
+  // A pixel's colour from the sums over its samples: sum and weight over all,
+  // hit_sum and covered over those that hit a surface (for AlphaMode).
+  auto finish_samples = [&](PixelOut& px, vec3 sum, vec3 hit_sum, float weight, float covered) {
+    // Every sample missed: the background itself (the average of equal
+    // values, which float sums can miss by a step; an 8-bit output then
+    // shows exactly the background's bytes).
+    px.color = covered == 0.f && !p.features.cube_map ? background.color : sum / weight;
+    if (alpha) {
+      px.coverage = covered / weight;
+      if (premultiplied) px.color = hit_sum / weight;
+      else if (covered > 0.f) px.color = hit_sum / covered;
+    }
+  };
+
+  // Adaptive sampling (RenderOptions::target_error): rounds of samples until
+  // the standard error of the mean, per channel in the output encoding, is
+  // below the target (Welford's running variance of the encoded values). Two
+  // passes over the tiles: every pixel's first round (kept in
+  // adaptive_states, allocated once before the tiles), then the rest, where a
+  // pixel the first round left settled takes one more round when a neighbour
+  // (of the 8) is not settled: an edge that crosses a corner of a pixel by
+  // less than one stratum can escape its first 16 samples but not its
+  // neighbours'. The second pass reads only first-round states, so no pixel
+  // depends on the order of the tiles.
+  const float target_variance = adaptive ? *o.target_error * *o.target_error : 0.f;
+  std::vector<AdaptiveState> adaptive_states(adaptive ? size_t(width) * size_t(height) : 0);
+  auto adaptive_round = [&](AdaptiveState& st, uint32_t pixel, float i, float j) {
+    for (const int end = std::min(o.max_spp, st.n + adaptive_round_samples); st.n < end; ++st.n) {
+      const vec2 u = o.sampler == PixelSampler::random ? random_pixel_point(pixel, uint32_t(st.n))
+                                                       : progressive_pixel_point(pixel, uint32_t(st.n));
+      bool hit;
+      const vec3 c = tracer.radiance(camera_ray(frame, i + u.x - 0.5f, j + u.y - 0.5f), 0, &hit);
+      st.sum += c;
+      if (hit) {
+        st.covered += 1.f;
+        if (alpha) st.hit_sum += c;
+      }
+      vec3 e = c;
+      if (srgb)
+        for (int k = 0; k < 3; ++k) e[k] = linear_to_srgb(std::isnan(c[k]) ? 0.f : std::clamp(c[k], 0.f, 1.f));
+      const vec3 delta = e - st.mean;
+      st.mean += delta / float(st.n + 1);
+      st.m2 += delta * (e - st.mean);
+    }
+  };
+  // Whether the squared standard error of the mean, m2 / (n - 1) / n, is below the target's square.
+  auto settled = [&](const AdaptiveState& st) {
+    return st.n >= 2 && std::max({st.m2.x, st.m2.y, st.m2.z}) < target_variance * float(st.n - 1) * float(st.n);
+  };
+  auto adaptive_first_tile = [&](int tile) {
+    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+        adaptive_round(adaptive_states[pixel], pixel, float(x), float(height - 1 - y));
+      }
+    tile_done();
+  };
+  auto adaptive_pixel = [&](int x, int y, PixelOut& px) -> uint64_t {
+    const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+    const float i = float(x), j = float(height - 1 - y);
+    AdaptiveState st = adaptive_states[pixel];  // its first round
+    if (settled(st) && st.n < o.max_spp) {
+      bool neighbour_unsettled = false;
+      for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
+          neighbour_unsettled |= !settled(adaptive_states[size_t(ny) * size_t(width) + size_t(nx)]);
+      if (neighbour_unsettled) adaptive_round(st, pixel, i, j);
+    }
+    while (st.n < o.max_spp && !settled(st)) adaptive_round(st, pixel, i, j);
+    finish_samples(px, st.sum, st.hit_sum, float(st.n), st.covered);
+    return uint64_t(st.n);
+  };
+
   auto render_tile = [&](int tile) {
     // Copies of what every pixel reads, local to the tile, so that the
     // compiler need not reload them after each byte it stores.
@@ -254,7 +354,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     };
     int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
     int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
-    if (o.spp <= 1 && sole_mesh >= 0) {
+    uint64_t tile_samples = 0;
+    if (centre_only && sole_mesh >= 0) {
       // Rows of eight pixels; a shorter end of row repeats its last ray in the unused lanes.
       // Every packet rewrites all rays, and the hits of the rays that hit (the only ones read).
       Ray rays[8];
@@ -303,7 +404,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
           const float i = float(x), j = float(height - 1 - y);
           const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
           PixelOut px;
-          if (o.spp <= 1) {
+          if (centre_only) {
             const Ray ray = centre_ray(x, height - 1 - y);
             Hit hit;
             const bool found = intersect_scene(p, ray, &hit);
@@ -312,6 +413,9 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
               continue;
             }
             shade_primary(ray, found, hit, px);
+          } else if (adaptive) {
+            if (aovs) trace_primary(camera_ray(frame, i, j), px);
+            tile_samples += adaptive_pixel(x, y, px);
           } else {
             if (aovs) trace_primary(camera_ray(frame, i, j), px);
             // sum and weight over all samples; hit_sum and covered over
@@ -319,7 +423,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
             vec3 sum(0.f), hit_sum(0.f);
             float weight = 0.f, covered = 0.f;
             for (int n = 0; n < o.spp; ++n) {
-              PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter);
+              PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter, o.sampler);
               if (so.weight <= 0.f) continue;
               bool hit;
               const vec3 c = tracer.radiance(camera_ray(frame, i + so.offset.x, j + so.offset.y), 0, &hit);
@@ -330,44 +434,111 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
                 if (alpha) hit_sum += so.weight * c;
               }
             }
-            if (weight > 0.f) {
-              // Every sample missed: the background itself (the average of
-              // equal values, which float sums can miss by a step; an 8-bit
-              // output then shows exactly the background's bytes).
-              px.color = covered == 0.f && !p.features.cube_map ? background.color : sum / weight;
-            } else {  // no sample with weight: the centre ray alone
+            if (weight <= 0.f) {  // no sample with weight: the centre ray alone
               bool hit;
-              px.color = tracer.radiance(camera_ray(frame, i, j), 0, &hit);
+              sum = tracer.radiance(camera_ray(frame, i, j), 0, &hit);
               weight = 1.f;
               covered = hit ? 1.f : 0.f;
-              hit_sum = hit ? px.color : vec3(0.f);
+              hit_sum = hit ? sum : vec3(0.f);
             }
-            if (alpha) {
-              px.coverage = covered / weight;
-              if (premultiplied) px.color = hit_sum / weight;
-              else if (covered > 0.f) px.color = hit_sum / covered;
-            }
+            finish_samples(px, sum, hit_sum, weight, covered);
           }
           store(pixel, px);
         }
     }
-    if (o.progress) {
-      int n = ++done;
-      std::lock_guard lock(progress_mutex);
-      o.progress(float(n) / float(tiles));
-    }
+    if (tile_samples) adaptive_samples += tile_samples;
+    tile_done();
+  };
+
+  // The 3x3-sample grid (grid_filter.h): the sample image, 3W x 3H, each
+  // sample's colour, whether it hit (for the background and coverage) and,
+  // with alpha, its colour when it hit. Allocated once, before the tiles.
+  const int grid_channels = alpha ? 7 : 4;
+  const size_t grid_width = size_t(grid_samples) * size_t(width);
+  std::vector<float> grid_image;
+  std::vector<GridAxisWeights> grid_wx, grid_wy;
+  if (grid) {
+    grid_image.resize(grid_width * size_t(grid_samples) * size_t(height) * size_t(grid_channels));
+    grid_wx = grid_axis_weights(width, o.grid.gaussian);
+    grid_wy = grid_axis_weights(height, o.grid.gaussian);
+  }
+  auto grid_sample_tile = [&](int tile) {
+    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const float i = float(x), j = float(height - 1 - y);
+        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+        for (int b = 0; b < grid_samples; ++b)
+          for (int a = 0; a < grid_samples; ++a) {
+            const vec2 off = grid_sample_offset(pixel, a, b, o.grid.jitter);
+            bool hit;
+            const vec3 c = tracer.radiance(camera_ray(frame, i + off.x, j - off.y), 0, &hit);
+            float* out = grid_image.data() + ((size_t(grid_samples) * size_t(y) + size_t(b)) * grid_width +
+                                              size_t(grid_samples) * size_t(x) + size_t(a)) *
+                                                 size_t(grid_channels);
+            for (int k = 0; k < 3; ++k) out[k] = c[k];
+            out[3] = hit ? 1.f : 0.f;
+            if (alpha)
+              for (int k = 0; k < 3; ++k) out[4 + k] = hit ? c[k] : 0.f;
+          }
+      }
+    tile_done();
+  };
+  auto grid_filter_tile = [&](int tile) {
+    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    const int sample_w = grid_samples * width, sample_h = grid_samples * height;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+        PixelOut px;
+        if (aovs) trace_primary(camera_ray(frame, float(x), float(height - 1 - y)), px);
+        float sums[7] = {};
+        for (int ky = 0; ky < 7; ++ky) {
+          const int sy = grid_samples * y - 2 + ky;
+          const float wy = grid_wy[size_t(y)][size_t(ky)];
+          if (sy < 0 || sy >= sample_h || wy == 0.f) continue;
+          for (int kx = 0; kx < 7; ++kx) {
+            const int sx = grid_samples * x - 2 + kx;
+            const float w = wy * grid_wx[size_t(x)][size_t(kx)];
+            if (sx < 0 || sx >= sample_w || w == 0.f) continue;
+            const float* in = grid_image.data() + (size_t(sy) * grid_width + size_t(sx)) * size_t(grid_channels);
+            for (int k = 0; k < grid_channels; ++k) sums[k] += w * in[k];
+          }
+        }
+        // The weights sum to 1: the filtered colour, coverage and hit colour.
+        finish_samples(px, vec3(sums[0], sums[1], sums[2]), vec3(sums[4], sums[5], sums[6]), 1.f, sums[3]);
+        store(pixel, px);
+      }
+    tile_done();
   };
 
   std::unique_ptr<tbb::global_control> limit;
   if (o.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-  if (o.threads == 1) {
-    for (int t = 0; t < tiles; ++t) render_tile(t);
+  auto each_tile = [&](const auto& tile_fn) {
+    if (o.threads == 1) {
+      for (int t = 0; t < tiles; ++t) tile_fn(t);
+    } else {
+      tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
+        for (int t = r.begin(); t < r.end(); ++t) tile_fn(t);
+      });
+    }
+  };
+  if (grid) {
+    each_tile(grid_sample_tile);
+    each_tile(grid_filter_tile);
+  } else if (adaptive) {
+    each_tile(adaptive_first_tile);
+    each_tile(render_tile);
   } else {
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
-    });
+    each_tile(render_tile);
   }
+  const uint64_t pixels = uint64_t(width) * uint64_t(height);
+  res.samples = grid       ? pixels * uint64_t(grid_samples * grid_samples)
+                : adaptive ? adaptive_samples.load()
+                           : pixels * uint64_t(std::max(o.spp, 1));
 }
 
 struct PathChoice {
@@ -399,6 +570,13 @@ std::string render_options_problem(const RenderOptions& o) {
   if (o.bounces < 0) return "bounces: must not be negative, got " + std::to_string(o.bounces);
   if (o.threads < 0) return "threads: must not be negative, got " + std::to_string(o.threads);
   if (o.camera < 0) return "camera: must not be negative, got " + std::to_string(o.camera);
+  if (o.target_error && !(*o.target_error > 0.f))
+    return "target-error: must be a positive number, got " + std::to_string(*o.target_error);
+  if (o.target_error && o.filter != PixelFilter::box) return "target-error: adaptive sampling uses the box filter";
+  if (o.max_spp < 1) return "max-spp: must be at least 1, got " + std::to_string(o.max_spp);
+  if (o.grid.on() && (o.spp > 1 || o.target_error))
+    return std::string(o.spp > 1 ? "spp" : "target-error") +
+           ": the 3x3 samples per pixel of -jitter/-filter cannot be combined with other sampling";
   return "";
 }
 

@@ -4,10 +4,13 @@
 #pragma once
 
 #include "rayform/image/image.h"
+#include "rayform/render/grid_filter.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/sampling.h"
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace rayform {
@@ -39,6 +42,20 @@ struct RenderOptions {
   int bounces = 0;                // reflection/refraction depth
   int spp = 1;                    // samples per pixel (1: the pixel centre only)
   PixelFilter filter = PixelFilter::box;
+  PixelSampler sampler = PixelSampler::stratified;  // random: also for spp 1 (no centre ray)
+  // Adaptive sampling when set: each pixel takes rounds of
+  // adaptive_round_samples stratified samples (progressive_pixel_point, box
+  // filter) until the standard error of its samples' mean, per channel and in
+  // the output encoding (sRGB-encoded values 0..1 for ColorFormat::srgb8, else
+  // linear), is below target_error, or max_spp samples are taken; a pixel
+  // whose first round settled takes a second when one of its 8 neighbours'
+  // first round did not (edges that cross a pixel by less than a stratum).
+  // spp is then not used. Must be > 0.
+  std::optional<float> target_error;
+  int max_spp = 256;  // adaptive sampling's most samples per pixel (>= 1)
+  // The 2012 assignment 5's 3x3-sample anti-aliasing (grid_filter.h); spp,
+  // filter, sampler and target_error are then not used.
+  GridFilter grid;
   // Which per-pixel outputs to fill besides colour.
   bool depth = false, normals = false, albedo = false;
   AlphaMode alpha = AlphaMode::none;
@@ -65,13 +82,18 @@ struct RenderResult {
   Image albedo;                 // 3 channels, as color
   Image8 albedo8;               // 3 channels, as color8
   std::vector<float> coverage;  // 0..1 per pixel (AlphaMode, above), when alpha is not none
+  uint64_t samples = 0;         // camera samples traced for colour (all pixels)
 };
+
+// Adaptive sampling's round: 16 samples, one in each cell of a 4x4 grid of
+// the pixel (fewer when max_spp is smaller).
+inline constexpr int adaptive_round_samples = 16;
 
 // What is wrong with `options`, "" when nothing: the one check of the
 // parameters a caller sets (image size >= 1 x 1, spp >= 1, bounces >= 0,
-// threads >= 0, camera >= 0). Each message starts with the parameter's name,
-// e.g. "size: width and height must be positive, got 0x20", so that a
-// command line can put its own flag in front.
+// threads >= 0, camera >= 0, target_error > 0 when set (not NaN) with the
+// box filter, max_spp >= 1, grid not combined with spp > 1 or target_error). Each message starts with the parameter's
+// name, e.g. "size: width and height must be positive, got 0x20", so that a command line can put its own flag in front.
 std::string render_options_problem(const RenderOptions& options);
 
 // Throws rayform::Error for options render_options_problem refuses, or a

@@ -16,6 +16,10 @@ uint64_t render_memory_bytes(const RenderOptions& o) {
   if (o.normals) per_pixel += 12 + 12 + 3;
   if (o.albedo) per_pixel += color;
   if (o.alpha != AlphaMode::none) per_pixel += 4 + (eight_bit ? 4 : 16);
+  // The 3x3-sample grid's sample image (grid_filter.h): colour and hit, and the hit colour with alpha.
+  // Adaptive sampling's first-round sums (render.cpp's AdaptiveState).
+  if (o.target_error && !o.grid.on()) per_pixel += 56;
+  if (o.grid.on()) per_pixel += grid_samples * grid_samples * 4 * (o.alpha != AlphaMode::none ? 7 : 4);
   const uint64_t pixels = uint64_t(std::max(o.width, 0)) * uint64_t(std::max(o.height, 0));
   constexpr uint64_t most = std::numeric_limits<uint64_t>::max();
   return pixels > most / per_pixel ? most : pixels * per_pixel;

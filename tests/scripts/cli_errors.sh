@@ -122,6 +122,18 @@ expect_usage_error background-two "$bg_expects '0.5,0.5'$" render "$ok" -o o.png
 expect_usage_error background-nan "$bg_expects 'nan,0,0'$" render "$ok" -o o.png --background nan,0,0
 expect_usage_error background-empty "$bg_expects ''$" render "$ok" -o o.png --background ''
 expect_usage_error background-hex-short "$bg_expects '#fff'$" render "$ok" -o o.png --background '#fff'
+# Adaptive sampling and the sampler (RenderOptions' one check, under each command line's names).
+expect_usage_error target-error-zero "^rayform: --target-error: must be a positive number" render "$ok" -o o.png --target-error 0
+expect_usage_error target-error-negative "^rayform: --target-error: must be a positive number" render "$ok" -o o.png --target-error -0.01
+expect_usage_error target-error-nan "^rayform: --target-error: must be a positive number, got -?nan" render "$ok" -o o.png --target-error nan
+expect_usage_error target-error-tent "^rayform: --target-error: adaptive sampling uses the box filter" render "$ok" -o o.png --target-error 0.01 --filter tent
+expect_usage_error max-spp-zero "^rayform: --max-spp: must be at least 1, got 0$" render "$ok" -o o.png --target-error 0.01 --max-spp 0
+expect_usage_error sampler-bogus "^rayform: --sampler: bogus not in" render "$ok" -o o.png --sampler bogus
+expect_usage_error course-target-error-zero "^rayform: -target-error: must be a positive number" -input "$ok" -size 20 20 -output o.png -target-error 0
+expect_usage_error course-target-error-nan "^rayform: -target-error expects a positive error per channel, got 'nan'$" -input "$ok" -size 20 20 -output o.png -target-error nan
+expect_usage_error course-max-spp-zero "^rayform: -max-spp: must be at least 1, got 0$" -input "$ok" -size 20 20 -output o.png -max-spp 0
+expect_usage_error course-sampler-bogus "^rayform: -sampler expects stratified or random, got 'x'$" -input "$ok" -size 20 20 -output o.png -sampler x
+expect_usage_error course-jitter-spp "^rayform: -spp: the 3x3 samples per pixel of -jitter/-filter cannot be combined" -input "$ok" -size 20 20 -output o.png -jitter -spp 4
 expect_usage_error background-hex-letters "$bg_expects '#12345g'$" render "$ok" -o o.png --background '#12345g'
 expect_usage_error background-hex-long "$bg_expects '#1234567'$" render "$ok" -o o.png --background '#1234567'
 # --transparent: only outputs with alpha; refused before the scene is read (a missing one is not reported).
