@@ -5,7 +5,9 @@
 // value against the formula.
 #include "rayform/image/image.h"
 #include "rayform/importers/course_txt/course_reader.h"
+#include "rayform/importers/scene_io.h"
 #include "rayform/importers/scene_ready.h"
+#include "rayform/importers/scene_writer.h"
 #include "rayform/math/perlin_noise.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
@@ -201,6 +203,39 @@ TEST(CourseA5, BmpCubeMapFacesInTheCourseOrder) {
   }
   // Decoded through the project's BMP reader, and shown where rays miss.
   EXPECT_NEAR(centre_pixel(cs.scene).x, 127.f / 255.f, 1e-6f);  // 0.5 written as 8 bits
+  fs::remove_all(dir);
+}
+
+TEST(CourseA5, WrittenBackAsA5) {
+  // The course writer picks a5 for a5 materials and writes Noise, falloff and
+  // .bmp cube map faces; reading that back gives the same scene data.
+  auto dir = test::temp_dir("a5_write");
+  write_cube_map(dir / "sky", ".bmp");
+  const std::string text = kCamera +
+                           "Lights { numLights 1 PointLight { position 0 0 5 color 1 1 1 falloff 0.5 } }\n"
+                           "Background { cubeMap sky }\n"
+                           "Materials { numMaterials 1 Material { diffuseColor 0.2 0.3 0.4 specularColor 1 1 1 "
+                           "refractionIndex 1.3\n"
+                           "  Noise { color 0.1 0.2 0.3 color 0.3 0.4 0.5 octaves 4 frequency 2 amplitude 4 } } }\n"
+                           "Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1 } }\n";
+  const Scene a = parse(text, {}, (dir / "s.txt").string()).scene;
+  fs::create_directories(dir / "out");
+  save_scene(a, (dir / "out" / "w.txt").string());
+  const LoadedScene b = load_scene((dir / "out" / "w.txt").string());
+  EXPECT_EQ(b.dialect, CourseDialect::a5);
+  const Material &ma = a.materials.at(0), &mb = b.scene.materials.at(0);
+  EXPECT_EQ(mb.refraction_index, ma.refraction_index);
+  EXPECT_EQ(mb.specular_highlight, false);
+  EXPECT_EQ(mb.noise.enabled, true);
+  EXPECT_EQ(mb.noise.color1, ma.noise.color1);
+  EXPECT_EQ(mb.noise.color2, ma.noise.color2);
+  EXPECT_EQ(mb.noise.octaves, 4);
+  EXPECT_EQ(mb.noise.frequency, 2.f);
+  EXPECT_EQ(mb.noise.amplitude, 4.f);
+  EXPECT_EQ(b.scene.lights.at(0).falloff, 0.5f);
+  EXPECT_EQ(b.scene.lights.at(0).attenuation_constant, 1.f);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(fs::path(b.scene.textures.at(size_t(b.scene.background.cube_map[size_t(i)])).path).extension(), ".bmp");
   fs::remove_all(dir);
 }
 
