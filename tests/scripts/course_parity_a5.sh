@@ -26,6 +26,18 @@ for scene in scene06_bunny_1k scene12_vase; do
   done
 done
 
+# -bounces defaults to 4 in a5 (the same picture as -bounces 4, not as 0),
+# and the modern command line gives the course's picture.
+(cd "$a5" && "$RAYFORM_BIN" -input scene10_sphere.txt -size 64 64 -output "$tmp/default.png" -shadows -quiet &&
+  "$RAYFORM_BIN" -input scene10_sphere.txt -size 64 64 -output "$tmp/b4.png" -shadows -bounces 4 -quiet &&
+  "$RAYFORM_BIN" -input scene10_sphere.txt -size 64 64 -output "$tmp/b0.png" -shadows -bounces 0 -quiet &&
+  "$RAYFORM_BIN" render scene10_sphere.txt -o "$tmp/modern.png" --size 64x64 --shadows --dialect a5 -q) ||
+  fail "scene10 at 64x64"
+idiff -q "$tmp/default.png" "$tmp/b4.png" >/dev/null 2>&1 || fail "a5 without -bounces differs from -bounces 4"
+idiff -q "$tmp/default.png" "$tmp/b0.png" >/dev/null 2>&1 && fail "a5 without -bounces is the -bounces 0 picture"
+idiff -q "$tmp/default.png" "$tmp/modern.png" >/dev/null 2>&1 || fail "rayform render --dialect a5 differs from the course command line"
+echo "ok   -bounces defaults to 4 in a5; render --dialect a5 gives the same picture"
+
 dialect_of() { (cd "$(dirname "$1")" && "$RAYFORM_BIN" info "$(basename "$1")") | sed -n 's/.*dialect \([0-9a-z]*\).*/\1/p'; }
 for scene in scene06_bunny_1k scene10_sphere scene11_cube scene12_vase; do
   d=$(dialect_of "$a5/$scene.txt")
