@@ -23,8 +23,9 @@
 namespace rayform {
 namespace {
 
-// The index of refraction of the medium camera rays start in (air, vacuum).
-inline constexpr float camera_medium_index = 1.f;
+// The index of refraction outside every object (air): camera rays start in
+// it, and a ray leaving a refractive object passes into it.
+inline constexpr float outside_index = 1.f;
 
 // Compile-time switches of a render path. The generic path has all of them
 // on; a specialised path turns off what the prepared scene does not use, so
@@ -110,8 +111,8 @@ struct Tracer {
   }
 
   // The colour seen along a ray travelling in a medium of index `medium`
-  // (camera rays: camera_medium_index), and whether it hit a surface (*hit; for coverage).
-  vec3 radiance(const Ray& ray, int depth, bool* hit, float medium = camera_medium_index) const {
+  // (camera rays: outside_index), and whether it hit a surface (*hit; for coverage).
+  vec3 radiance(const Ray& ray, int depth, bool* hit, float medium = outside_index) const {
     Hit h;
     SurfacePoint sp;
     vec4 k(0.f);
@@ -120,7 +121,7 @@ struct Tracer {
     return shade(ray, sp, vec3(k), depth, medium);
   }
 
-  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth, float medium = camera_medium_index) const {
+  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth, float medium = outside_index) const {
     const Material& m = prepared.materials[sp.material];
     if (m.unlit) return k;
     // The unit view direction, for highlights and secondary rays only.
@@ -162,7 +163,7 @@ struct Tracer {
     };
     if (!(m.refraction_index > 0.f)) return trace_dir(reflected, medium);
     const bool entering = glm::dot(d, sp.geometric_normal) < 0.f;
-    const float ni = medium, nt = entering ? m.refraction_index : camera_medium_index;
+    const float ni = medium, nt = entering ? m.refraction_index : outside_index;
     const float eta = ni / nt;
     vec3 ns = entering ? n : -n;
     float cos_i = std::clamp(-glm::dot(d, ns), 0.f, 1.f);
