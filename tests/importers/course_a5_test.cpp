@@ -208,7 +208,8 @@ TEST(CourseA5, BmpCubeMapFacesInTheCourseOrder) {
 
 TEST(CourseA5, WrittenBackAsA5) {
   // The course writer picks a5 for a5 materials and writes Noise, falloff and
-  // .bmp cube map faces; reading that back gives the same scene data.
+  // .bmp cube map faces; reading that back gives the same scene data, as does
+  // a .glb (rayform's extras).
   auto dir = test::temp_dir("a5_write");
   write_cube_map(dir / "sky", ".bmp");
   const std::string text = kCamera +
@@ -236,6 +237,20 @@ TEST(CourseA5, WrittenBackAsA5) {
   EXPECT_EQ(b.scene.lights.at(0).attenuation_constant, 1.f);
   for (int i = 0; i < 6; ++i)
     EXPECT_EQ(fs::path(b.scene.textures.at(size_t(b.scene.background.cube_map[size_t(i)])).path).extension(), ".bmp");
+  // Through glTF: the a5 material and light data in rayform's extras.
+  save_scene(a, (dir / "out" / "w.glb").string());
+  const Scene g = load_scene((dir / "out" / "w.glb").string()).scene;
+  const Material& mg = g.materials.at(0);
+  EXPECT_FALSE(mg.specular_highlight);
+  EXPECT_FALSE(mg.back_faces_cast_shadows);
+  EXPECT_TRUE(mg.noise.enabled);
+  EXPECT_EQ(mg.noise.color1, ma.noise.color1);
+  EXPECT_EQ(mg.noise.color2, ma.noise.color2);
+  EXPECT_EQ(mg.noise.octaves, 4);
+  EXPECT_EQ(mg.noise.frequency, 2.f);
+  EXPECT_EQ(mg.noise.amplitude, 4.f);
+  EXPECT_EQ(g.lights.at(0).falloff, 0.5f);
+  EXPECT_EQ(g.lights.at(0).attenuation_constant, 1.f);
   fs::remove_all(dir);
 }
 
