@@ -103,7 +103,12 @@ struct Tracer {
     Ray shadow = l.kind == Light::Kind::directional
                      ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
                      : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);
-    if (!closest_shadows) return occluded(prepared, shadow);
+    return closest_shadows ? blocked_by_closest(shadow, ls) : occluded(prepared, shadow);
+  }
+
+  // The closest-hit form of blocked (out of line: the any-hit path above
+  // stays as small as it was).
+  [[gnu::noinline]] bool blocked_by_closest(const Ray& shadow, const LightSample& ls) const {
     Hit h;
     if (!intersect_scene(prepared, shadow, &h)) return false;
     const SurfacePoint blocker = surface_point(prepared, shadow, h, HitPoint::none);
