@@ -16,7 +16,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 for scene in scene06_bunny_1k scene12_vase; do
   for size in "200 200" "320 240"; do
     out="$tmp/${scene}_${size/ /x}.png"
-    if ! (cd "$a5" && "$RAYFORM_BIN" -input "$scene.txt" -size $size -output "$out" -shadows -quiet); then
+    if ! (cd "$a5" && "$RAYFORM_BIN" -input "$scene.txt" -size "${size% *}" "${size#* }" -output "$out" -shadows -quiet); then
       fail "$scene at $size"
       continue
     fi
