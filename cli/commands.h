@@ -15,7 +15,7 @@ void add_render_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 
-// "2012"/"2019" -> dialect; "" -> detect.
+// "2012"/"2019"/"a5" -> dialect; "" -> detect.
 std::optional<CourseDialect> dialect_from_string(const std::string& d);
 
 }  // namespace rayform::cli

@@ -122,7 +122,7 @@ void add_convert_command(CLI::App& app) {
       ->check(CLI::Range(3, 4096))
       ->capture_default_str();
   c->add_option("--dialect", a->dialect, "Course dialect to read and write (default: the input's, else as needed)")
-      ->check(CLI::IsMember({"2012", "2019"}));
+      ->check(CLI::IsMember({"2012", "2019", "a5"}));
   c->add_flag("--tessellate-only", a->tessellate_only,
               "glTF: spheres and planes as meshes only, without their exact form in extras");
   CLI::Option* out_dir = c->add_option("--out-dir", a->save.side_folder,

@@ -53,7 +53,7 @@ bool is_course_command_line(const std::vector<std::string>& args) {
 
 RenderJob parse_course_command_line(const std::vector<std::string>& v) {
   RenderJob job;
-  bool has_input = false, has_output = false, has_size = false;
+  bool has_input = false, has_output = false, has_size = false, has_bounces = false;
   Args a{v};
   while (a.i < v.size()) {
     std::string f = v[a.i++];
@@ -76,11 +76,12 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     } else if (f == "-normals") job.normals = a.take(f, "an image file");
     else if (f == "-albedo") job.albedo = a.take(f, "an image file");
     else if (f == "-dialect") {
-      std::string d = a.take(f, "2012 or 2019");
+      std::string d = a.take(f, "2012, 2019 or a5");
       job.dialect = dialect_from_string(d);
-      if (!job.dialect) throw UsageError("-dialect expects 2012 or 2019, got '" + d + "'");
+      if (!job.dialect) throw UsageError("-dialect expects 2012, 2019 or a5, got '" + d + "'");
     } else if (f == "-bounces") {
       job.render.bounces = a.integer(f, "a number of bounces");
+      has_bounces = true;
     } else if (f == "-shadows") job.render.shadows = true;
     else if (f == "-jitter") job.render.grid.jitter = true;
     else if (f == "-filter") job.render.grid.gaussian = true;
@@ -105,6 +106,7 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
   if (!has_input) throw UsageError("missing -input SCENE");
   if (!has_output) throw UsageError("missing -output IMAGE");
   if (!has_size) throw UsageError("missing -size WIDTH HEIGHT");
+  job.default_bounces = !has_bounces;
   // The one check of the render parameters (render.h), under the course's flag names.
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError("-" + problem);
   return job;

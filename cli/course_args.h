@@ -1,6 +1,7 @@
 // The course's own command line, verbatim: single-dash flags in any order,
 //   -input F.txt -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
-//   [-dialect 2012|2019] [-bounces N] [-shadows] [-jitter] [-filter]
+//   [-dialect 2012|2019|a5] [-bounces N] [-shadows] [-jitter] [-filter]
+// (-bounces defaults to 4 for a scene of the a5 dialect, else 0)
 // (plus rayform's -threads N, -spp N, -sampler stratified|random, -target-error E,
 // -max-spp N, -stats, -generic and -quiet). Unknown flags are errors.
 // The 2012 assignment-5 anti-aliasing flags are the assignment's 3x3 samples per

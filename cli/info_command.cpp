@@ -30,7 +30,7 @@ nlohmann::json info_json(const std::string& path, const LoadedScene& loaded, con
   nlohmann::json j;
   j["scene"] = path;
   j["format"] = format_name(loaded.format);
-  if (loaded.format == SceneFormat::course_txt) j["dialect"] = loaded.dialect == CourseDialect::v2019 ? "2019" : "2012";
+  if (loaded.format == SceneFormat::course_txt) j["dialect"] = std::string(course_dialect_name(loaded.dialect));
   j["nodes"] = s.nodes;
   j["instances"] = s.instances;
   j["spheres"] = s.spheres;
@@ -66,8 +66,8 @@ void add_info_command(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* info = app.add_subcommand("info", "Print counts and bounds of a scene, and the glTF extensions it uses");
   info->add_option("scene", a->scene, "Scene file")->required();
-  info->add_option("--dialect", a->dialect, "Course dialect (default: detected)")
-      ->check(CLI::IsMember({"2012", "2019"}));
+  info->add_option("--dialect", a->dialect, "Course dialect: 2012, 2019 or a5 (default: detected)")
+      ->check(CLI::IsMember({"2012", "2019", "a5"}));
   info->add_flag("--json", a->json, "Print the same as one JSON object on stdout, the warnings in it too");
   add_read_flags(*info, a->read);
   info->callback([a] {
@@ -84,8 +84,7 @@ void add_info_command(CLI::App& app) {
     }
     std::cout << "scene:       " << a->scene << "\n";
     if (loaded.format == SceneFormat::course_txt)
-      std::cout << "format:      course .txt, dialect " << (loaded.dialect == CourseDialect::v2019 ? "2019" : "2012")
-                << "\n";
+      std::cout << "format:      course .txt, dialect " << course_dialect_name(loaded.dialect) << "\n";
     std::cout << format_scene_stats(stats);
     if (!loaded.extensions.empty()) {
       std::cout << "extensions:\n";

@@ -23,8 +23,9 @@ Examples:
   Course command line (verbatim, single dash, any order):
     rayform -input scene01_plane.txt -size 200 200 -output 1.bmp -depth 8 12 d.bmp -normals n.bmp
     rayform -input scene06_bunny_1k.txt -size 200 200 -output b.png -dialect 2019
+    rayform -input scene10_sphere.txt -size 200 200 -output s.png -dialect a5 -shadows -bounces 4
   Course flags: -input F -size W H -output IMG [-depth MIN MAX IMG] [-normals IMG]
-    [-albedo IMG] [-dialect 2012|2019] [-shadows] [-bounces N] [-jitter] [-filter]
+    [-albedo IMG] [-dialect 2012|2019|a5] [-shadows] [-bounces N] [-jitter] [-filter]
     [-spp N] [-sampler stratified|random] [-target-error E] [-max-spp N]
     [-threads N] [-stats] [-generic] [-quiet]   (README.md explains each)
   Subcommands:

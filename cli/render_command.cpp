@@ -112,6 +112,7 @@ struct RenderArgs {
 std::optional<CourseDialect> dialect_from_string(const std::string& d) {
   if (d == "2012") return CourseDialect::v2012;
   if (d == "2019") return CourseDialect::v2019;
+  if (d == "a5") return CourseDialect::a5;
   return std::nullopt;
 }
 
@@ -131,12 +132,13 @@ void add_render_command(CLI::App& app) {
   render->add_option("--depth", a->depth, "Depth image MIN:MAX:FILE");
   render->add_option("--normals", job.normals, "Normals image");
   render->add_option("--albedo", job.albedo, "Unlit surface colour image");
-  render->add_option("--dialect", a->dialect, "Course dialect (default: detected)")
-      ->check(CLI::IsMember({"2012", "2019"}));
+  render->add_option("--dialect", a->dialect, "Course dialect: 2012, 2019 or a5 (default: detected)")
+      ->check(CLI::IsMember({"2012", "2019", "a5"}));
   CLI::Option* camera = render->add_option("--camera", job.render.camera, "Camera index");
   render->add_option("--threads", job.render.threads, "Worker threads (0: all)");
   render->add_flag("--shadows", job.render.shadows, "Shadow rays to every light");
-  render->add_option("--bounces", job.render.bounces, "Reflection/refraction depth");
+  CLI::Option* bounces = render->add_option("--bounces", job.render.bounces,
+                                            "Reflection/refraction depth (default: 4 for course a5 scenes, else 0)");
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
       ->check(CLI::IsMember({"box", "tent"}))
@@ -194,8 +196,9 @@ void add_render_command(CLI::App& app) {
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a, camera, orbit, fov, background] {
+  render->callback([a, camera, orbit, fov, background, bounces] {
     a->job.default_size = a->size.empty();
+    a->job.default_bounces = bounces->count() == 0;
     if (!a->job.default_size) parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
     a->job.dialect = dialect_from_string(a->dialect);

@@ -187,9 +187,11 @@ void run_render_job(const RenderJob& job) {
   PreparedScene prepared = prepare_scene(loaded.scene, po);
   double prepare_s = seconds_since(t_prepare);
 
+  // Depth and normal images: 2019's conventions, or 2012's (also for a5).
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
-  bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2012;
+  bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect != CourseDialect::v2019;
   RenderOptions ro = job_render_options(job);
+  if (job.default_bounces) ro.bounces = loaded.render.bounces;
   Progress progress("rendering", job.quiet);
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
   auto t_render = clock::now();

@@ -31,6 +31,9 @@ struct RenderJob {
   std::optional<CourseDialect> dialect;
   // No --size: the library's default for the scene's format (default_render_options).
   bool default_size = false;
+  // No --bounces: the default of the scene's format and dialect, known once
+  // it is read (default_render_options: 4 for the course's a5, else 0).
+  bool default_bounces = false;
   // Output transfer function (--color): automatic lets render/color_output.h choose.
   ColorEncoding color = ColorEncoding::automatic;
   // Camera and background overrides (any format). --frame and --orbit

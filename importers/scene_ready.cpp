@@ -6,9 +6,10 @@
 
 namespace rayform {
 
-RenderOptions default_render_options(SceneFormat format) {
+RenderOptions default_render_options(SceneFormat format, CourseDialect dialect) {
   RenderOptions o;
   if (format != SceneFormat::course_txt) o.width = o.height = asset_image_size;
+  else if (dialect == CourseDialect::a5) o.bounces = course_a5_default_bounces;
   return o;
 }
 
@@ -32,7 +33,7 @@ ReadyScene load_ready_scene(const std::string& path, const ReadyOptions& options
     ready.notes.push_back(path + " has no light: added the default light rig (a head-light, a key and a fill) " +
                           "around the camera");
   ready.color.scene = scene_colors(ready.format);
-  ready.render = default_render_options(ready.format);
+  ready.render = default_render_options(ready.format, ready.dialect);
   ready.render.camera = options.camera;
   return ready;
 }

@@ -32,8 +32,9 @@ namespace rayform {
 inline constexpr int asset_image_size = 512;
 
 // The render options a scene of `format` starts from: RenderOptions{} with
-// the default size of the format.
-RenderOptions default_render_options(SceneFormat format);
+// the default size of the format, and for a course scene of the a5 dialect
+// its default bounces (course_a5_default_bounces).
+RenderOptions default_render_options(SceneFormat format, CourseDialect dialect = CourseDialect::v2012);
 
 // What the colours of a scene of `format` mean: course scenes produce values
 // for the screen as they are, assets linear light (render/color_output.h).
@@ -60,7 +61,7 @@ struct ReadyScene : LoadedScene {
   std::vector<std::string> notes;
   // How to write its pictures (write_color_image): what its colours mean.
   ColorOutput color;
-  // default_render_options(format), with `camera` set to ReadyOptions::camera.
+  // default_render_options(format, dialect), with `camera` set to ReadyOptions::camera.
   RenderOptions render;
 };
 

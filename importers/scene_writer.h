@@ -31,8 +31,9 @@ struct SaveOptions {
   bool embed = false;
   // Longitudes of a tessellated sphere (>= 3); it has segments / 2 bands.
   int sphere_segments = 64;
-  // Course output: the dialect to write; unset: 2012 unless the scene needs
-  // 2019 (falloff, bump maps, a raw camera up vector, 2019 mesh normals).
+  // Course output: the dialect to write; unset: a5 for a5 materials (Noise, no
+  // highlight), else 2012 unless the scene needs 2019 (falloff, bump maps, a
+  // raw camera up vector, 2019 mesh normals).
   std::optional<CourseDialect> dialect;
   // glTF: keep spheres, planes and triangles' analytic form in primitive
   // extras (rayform's reader restores them). false: meshes only, so every

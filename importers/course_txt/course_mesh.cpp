@@ -37,11 +37,13 @@ Mesh read_course_mesh(const std::string& path, CourseDialect dialect) {
 
   Mesh m;
   m.source_path = path;
+  // a5: a small mesh file is shaded with flat face normals (Mesh::normals empty).
+  const bool flat = dialect == CourseDialect::a5 && g.positions.size() <= course_a5_flat_mesh_vertices;
   bool has_uv = false;
   for (const auto& c : g.corners) has_uv |= c.uv >= 0;
   if (!has_uv) {
     m.positions = g.positions;
-    m.normals = position_normals;
+    if (!flat) m.normals = position_normals;
     for (const auto& c : g.corners) m.indices.push_back(uint32_t(c.position));
     return m;
   }
@@ -51,7 +53,7 @@ Mesh read_course_mesh(const std::string& path, CourseDialect dialect) {
     auto [it, inserted] = split.try_emplace({c.position, c.uv}, uint32_t(m.positions.size()));
     if (inserted) {
       m.positions.push_back(g.positions[c.position]);
-      m.normals.push_back(position_normals[c.position]);
+      if (!flat) m.normals.push_back(position_normals[c.position]);
       m.uvs.push_back(c.uv >= 0 ? g.uvs[c.uv] : vec2(0.f));
     }
     m.indices.push_back(it->second);

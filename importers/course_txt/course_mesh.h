@@ -2,7 +2,8 @@
 // ignored, and smooth vertex normals made by the dialect's rule: the sum over
 // the faces around a vertex of their face normals, area-weighted (2012, raw
 // cross products) or unit (2019), then normalised. Texture coordinates are
-// per corner, so vertices are split where one position has several uvs.
+// per corner, so vertices are split where one position has several uvs. The
+// a5 dialect shades meshes of at most 120 vertices flat.
 #pragma once
 
 #include "rayform/importers/course_txt/course_reader.h"
@@ -19,7 +20,12 @@ namespace rayform {
 std::vector<vec3> course_position_normals(const std::vector<vec3>& positions, const std::vector<uint32_t>& corners,
                                           CourseDialect dialect);
 
-// Throws rayform::Error naming the file.
+// a5: a mesh file of at most this many vertices is shaded with flat face
+// normals, (v1 - v0) x (v2 - v0); a larger one as 2012 (area-weighted).
+inline constexpr size_t course_a5_flat_mesh_vertices = 120;
+
+// Throws rayform::Error naming the file; a5 reads as 2012 but for the flat
+// normals of small meshes (course_a5_flat_mesh_vertices).
 Mesh read_course_mesh(const std::string& path, CourseDialect dialect);
 
 }  // namespace rayform

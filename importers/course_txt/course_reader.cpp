@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -55,12 +56,43 @@ class CourseParser {
         tokens_.fail(token, "MaterialIndex " + std::to_string(scene_.nodes[node].material) +
                                 " is out of range: the scene has " + std::to_string(scene_.materials.size()) +
                                 " materials");
+    if (dialect_ == CourseDialect::a5) give_a5_default_material();
     out.scene = std::move(scene_);
     out.warnings = std::move(warnings_);
     return out;
   }
 
  private:
+  // a5: shapes declared before any MaterialIndex get the default material
+  // with a5's shading rules (course_material), appended once.
+  void give_a5_default_material() {
+    int index = invalid;
+    for (Node& n : scene_.nodes) {
+      if (n.kind != Node::Kind::shape || n.material != invalid) continue;
+      if (index == invalid) {
+        Material m = course_material();
+        m.name = "default";
+        scene_.materials.push_back(m);
+        index = int(scene_.materials.size()) - 1;
+      }
+      n.material = index;
+    }
+  }
+
+  // A material with the defaults of the course and the dialect's rules: a5
+  // has no highlight (shininess is read and ignored; specularColor weights
+  // reflection and refraction), and a shadow falls only from the closest
+  // surface before the light when it faces the shaded point.
+  Material course_material() const {
+    Material m;
+    m.texture_modulates = false;
+    if (dialect_ == CourseDialect::a5) {
+      m.specular_highlight = false;
+      m.back_faces_cast_shadows = false;
+    }
+    return m;
+  }
+
   // Reads `{ key value... }` with the keys in any order; `on_key` consumes the
   // value of a key it knows and returns false for an unknown key.
   template <class Fn>
@@ -149,8 +181,10 @@ class CourseParser {
           } else return false;
           return true;
         });
-        // Falloff attenuates only in the 2019 dialect.
+        // Falloff attenuates by 1 / (falloff d^2) in the 2019 dialect, by
+        // 1 / (1 + falloff d^2) in a5, not at all in 2012.
         if (dialect_ == CourseDialect::v2012) l.falloff = 0.f;
+        if (dialect_ == CourseDialect::a5) l.attenuation_constant = 1.f;
       } else {
         tokens_.fail(t, "expected DirectionalLight, PointLight or '}' in Lights");
       }
@@ -176,11 +210,13 @@ class CourseParser {
     Token t = tokens_.next_or_fail("a cube map folder after cubeMap");
     scene_.background.cube_map_dir = t.text;
     fs::path dir = resolve(t, t.text, "cube map folder");
-    // Faces in the order of Background::cube_map.
+    // Faces in the order of Background::cube_map: .bmp files in a5, .png in 2012 and 2019.
     static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
+    const std::string extension = cube_map_extension(dialect_);
     for (int i = 0; i < 6; ++i) {
-      fs::path f = dir / (std::string(faces[i]) + ".png");
-      if (!exists(f)) tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + ".png (" + f.string() + ")");
+      fs::path f = dir / (faces[i] + extension);
+      if (!exists(f))
+        tokens_.fail(t, "cube map folder has no " + std::string(faces[i]) + extension + " (" + f.string() + ")");
       check_access(t, "cube map face", (fs::path(t.text) / f.filename()).string(), f);
       Texture tex;
       tex.name = faces[i];
@@ -198,23 +234,59 @@ class CourseParser {
     parse_counted_list(opener, "numMaterials", "materials", [&](const Token& t) {
       if (t.text != "Material" && t.text != "PhongMaterial")
         tokens_.fail(t, "expected Material, PhongMaterial or '}' in Materials");
-      Material m;
-      m.texture_modulates = false;
-      parse_block(t, "diffuseColor, specularColor, shininess, texture, bump, refractionIndex", [&](const Token& k) {
-        if (k.text == "diffuseColor") m.diffuse = tokens_.vec3_value();
-        else if (k.text == "specularColor") m.specular = tokens_.vec3_value();
-        else if (k.text == "shininess") m.shininess = tokens_.number();
-        else if (k.text == "refractionIndex") m.refraction_index = tokens_.number();
-        else if (k.text == "texture") m.diffuse_texture = texture(tokens_.next_or_fail("a texture file after texture"));
-        else if (k.text == "bump") m.bump_texture = texture(tokens_.next_or_fail("a bump map file after bump"));
-        else return false;
-        return true;
-      });
+      Material m = course_material();
+      parse_block(t, "diffuseColor, specularColor, shininess, texture, bump, refractionIndex, Noise",
+                  [&](const Token& k) {
+                    if (k.text == "diffuseColor") m.diffuse = tokens_.vec3_value();
+                    else if (k.text == "specularColor") m.specular = tokens_.vec3_value();
+                    else if (k.text == "shininess") m.shininess = tokens_.number();
+                    else if (k.text == "refractionIndex") {
+                      m.refraction_index = tokens_.number();
+                      // 0: opaque (reflective with specularColor); > 0: refractive.
+                      if (m.refraction_index < 0.f)
+                        tokens_.fail(tokens_.last(), "refractionIndex must be 0 (opaque) or positive, found '" +
+                                                         shown(tokens_.last().text) + "'");
+                    } else if (k.text == "texture")
+                      m.diffuse_texture = texture(tokens_.next_or_fail("a texture file after texture"));
+                    else if (k.text == "bump")
+                      m.bump_texture = texture(tokens_.next_or_fail("a bump map file after bump"));
+                    else if (k.text == "Noise") m.noise = parse_noise(k);
+                    else return false;
+                    return true;
+                  });
       m.name = "material" + std::to_string(mats.size());
       mats.push_back(m);
       return true;
     });
     scene_.materials = std::move(mats);
+  }
+
+  // Noise { color c1 color c2 octaves k frequency f amplitude a } (a5); the
+  // two colours are required, octaves must not be negative.
+  SolidNoise parse_noise(const Token& opener) {
+    SolidNoise n;
+    n.enabled = true;
+    int colors = 0;
+    parse_block(opener, "color, octaves, frequency, amplitude", [&](const Token& k) {
+      if (k.text == "color") {
+        if (colors == 2) tokens_.fail(k, "Noise has two colours; a third follows");
+        (colors++ == 0 ? n.color1 : n.color2) = tokens_.vec3_value();
+      } else if (k.text == "octaves") {
+        Token v = tokens_.peek_token();
+        const float octaves = tokens_.number();
+        if (!(octaves >= 0.f && octaves <= float(max_noise_octaves) && octaves == std::floor(octaves)))
+          tokens_.fail(v, "octaves must be a whole number from 0 to " + std::to_string(max_noise_octaves) +
+                              ", found '" + shown(v.text) + "'");
+        n.octaves = int(octaves);
+      } else if (k.text == "frequency") n.frequency = tokens_.number();
+      else if (k.text == "amplitude") n.amplitude = tokens_.number();
+      else return false;
+      return true;
+    });
+    if (colors < 2)
+      tokens_.fail(opener,
+                   std::string("Noise needs two colours (color r g b twice), found ") + (colors ? "one" : "none"));
+    return n;
   }
 
   int texture(const Token& file) {
@@ -458,12 +530,43 @@ class CourseParser {
   std::map<std::string, int> mesh_cache_, texture_cache_;
 };
 
+// Whether the cube map folder `dir` (as the scene writes it) holds a face of
+// type `extension`, in the folder the parser takes (beside the scene, else
+// the working directory).
+bool cube_map_has_faces(const std::string& scene_path, const std::string& dir, const FileAccess& access,
+                        const std::string& extension) {
+  std::error_code ec;
+  fs::path folder(dir);
+  if (!folder.is_absolute()) {
+    const fs::path beside = fs::path(scene_path).parent_path() / folder;
+    if (fs::exists(beside, ec)) folder = beside;
+    else if (access.confine) return false;
+  }
+  for (const char* face : {"right", "left", "up", "down", "front", "back"})
+    if (fs::exists(folder / (face + extension), ec)) return true;
+  return false;
+}
+
 }  // namespace
 
+std::string cube_map_extension(CourseDialect dialect) { return dialect == CourseDialect::a5 ? ".bmp" : ".png"; }
+
+CourseDialect detect_course_dialect(std::string_view text, const std::string& path, const FileAccess& access) {
+  const CourseDialectMarks marks = course_dialect_marks(text);
+  auto cube_faces = [&](CourseDialect d) {
+    return !marks.cube_map_dir.empty() && cube_map_has_faces(path, marks.cube_map_dir, access, cube_map_extension(d));
+  };
+  // .bmp faces are a5's alone (2019 reads .png ones), whatever else the scene uses.
+  if (cube_faces(CourseDialect::a5)) return CourseDialect::a5;
+  if (marks.v2019) return CourseDialect::v2019;
+  if (marks.a5) return CourseDialect::a5;
+  // With a5 told apart by its .bmp faces, .png faces are 2019's.
+  if (cube_faces(CourseDialect::v2019)) return CourseDialect::v2019;
+  return CourseDialect::v2012;
+}
+
 CourseScene parse_course_scene(std::string_view text, const std::string& path, const CourseReadOptions& options) {
-  CourseDialect dialect = options.dialect
-                              ? *options.dialect
-                              : (course_text_uses_2019_keywords(text) ? CourseDialect::v2019 : CourseDialect::v2012);
+  const CourseDialect dialect = options.dialect ? *options.dialect : detect_course_dialect(text, path, options.access);
   return CourseParser(text, path, dialect, options.access).parse();
 }
 

@@ -1,5 +1,5 @@
-// Reader of the MIT 6.837 ray-casting scene format (.txt), both dialects (see
-// docs/course-format.md). Fills a Scene; every error names file:line:column
+// Reader of the MIT 6.837 ray-casting scene format (.txt), all three dialects
+// (2012, 2019, a5; see docs/course-format.md). Fills a Scene; every error names file:line:column
 // and what was expected.
 #pragma once
 
@@ -15,8 +15,7 @@
 namespace rayform {
 
 struct CourseReadOptions {
-  // The dialect to use; when unset it is 2019 if the scene uses `falloff` or
-  // `bump`, else 2012.
+  // The dialect to use; when unset, detect_course_dialect's.
   std::optional<CourseDialect> dialect;
   FileAccess access{};  // meshes and textures the scene names
 };
@@ -26,6 +25,20 @@ struct CourseScene {
   CourseDialect dialect = CourseDialect::v2012;
   std::vector<std::string> warnings;
 };
+
+// The dialect of a scene whose command line names none: a5 if its cubeMap
+// folder holds .bmp faces; else 2019 if it uses `falloff` or `bump`; else a5
+// if it uses `Noise` or `refractionIndex`; else 2019 if its cubeMap folder
+// holds .png faces; else 2012. `path` (the scene file) anchors the cube map
+// folder as the reader resolves it.
+CourseDialect detect_course_dialect(std::string_view text, const std::string& path, const FileAccess& access = {});
+
+// The file type of the cube map faces of a dialect: ".bmp" (a5) or ".png".
+std::string cube_map_extension(CourseDialect dialect);
+
+// The most octaves a Noise may have (2^octaves scales the point; beyond ~60 a
+// double's exponent gives nothing more).
+inline constexpr int max_noise_octaves = 64;
 
 // Reads a scene file. Relative mesh and texture paths resolve against the
 // scene file's folder, then (not under FileAccess::confine) the working

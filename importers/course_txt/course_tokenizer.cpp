@@ -110,13 +110,16 @@ int CourseTokenizer::count() {
   return int(v);
 }
 
-bool course_text_uses_2019_keywords(std::string_view text) {
+CourseDialectMarks course_dialect_marks(std::string_view text) {
+  CourseDialectMarks marks;
   CourseTokenizer tk(text, "");
   while (!tk.at_end()) {
     Token t = tk.next();
-    if (t.text == "falloff" || t.text == "bump") return true;
+    if (t.text == "falloff" || t.text == "bump") marks.v2019 = true;
+    else if (t.text == "Noise" || t.text == "refractionIndex") marks.a5 = true;
+    else if (t.text == "cubeMap" && !tk.at_end()) marks.cube_map_dir = tk.next().text;
   }
-  return false;
+  return marks;
 }
 
 }  // namespace rayform

@@ -50,7 +50,12 @@ class CourseTokenizer {
 // A token's text as an error message shows it: at most 64 bytes, then "...".
 std::string shown(std::string_view text);
 
-// Whether the text uses a keyword only the 2019 dialect has (falloff, bump).
-bool course_text_uses_2019_keywords(std::string_view text);
+// The words of a scene text that choose its dialect (course_reader.h).
+struct CourseDialectMarks {
+  bool v2019 = false;        // falloff or bump (only the 2019 dialect has them)
+  bool a5 = false;           // Noise or refractionIndex (assignment 5)
+  std::string cube_map_dir;  // the folder after the last cubeMap, if any
+};
+CourseDialectMarks course_dialect_marks(std::string_view text);
 
 }  // namespace rayform

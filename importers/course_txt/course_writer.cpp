@@ -123,6 +123,12 @@ class CourseBuilder {
   }
 
   CourseDialect needed_dialect() {
+    // Materials of the 2012 assignment 5 (which has falloff too).
+    for (const Material& m : s_.materials)
+      if (m.noise.enabled || !m.specular_highlight || !m.back_faces_cast_shadows) {
+        note("written in the a5 dialect (materials of the 2012 assignment 5: Noise, no highlight, its shadow rule)");
+        return CourseDialect::a5;
+      }
     const char* why = nullptr;
     for (const Light& l : s_.lights)
       if (l.kind != Light::Kind::directional && l.falloff > 0.f) why = "point lights with falloff";
@@ -181,7 +187,7 @@ class CourseBuilder {
       o << "    PointLight {\n        position " << format_vec3(l.position) << "\n        color "
         << format_vec3(l.color) << "\n";
       if (l.falloff > 0.f) {
-        if (dialect_ == CourseDialect::v2019) o << "        falloff " << format_float(l.falloff) << "\n";
+        if (dialect_ != CourseDialect::v2012) o << "        falloff " << format_float(l.falloff) << "\n";
         else ++falloffs;
       }
       o << "    }\n";
@@ -211,9 +217,11 @@ class CourseBuilder {
           break;
         }
         try {
+          // The dialect's file type: .bmp faces in a5, .png in the others.
+          const std::string face_type = cube_map_extension(dialect_);
           std::string ext;
-          std::vector<uint8_t> bytes = texture_file(s_.textures[size_t(t)], {"png"}, &ext);
-          out_.add((fs::path(out_.side_path(dir)) / (std::string(faces[i]) + ".png")).string(), std::move(bytes));
+          std::vector<uint8_t> bytes = texture_file(s_.textures[size_t(t)], {face_type.substr(1)}, &ext);
+          out_.add((fs::path(out_.side_path(dir)) / (std::string(faces[i]) + face_type)).string(), std::move(bytes));
         } catch (const Error& e) {
           note(std::string("cube map face ") + faces[i] + " cannot be read (" + e.what() + "); cube map dropped");
           ok = false;
@@ -250,6 +258,11 @@ class CourseBuilder {
         }
       }
       if (m.refraction_index != 0.f) o << "        refractionIndex " << format_float(m.refraction_index) << "\n";
+      if (m.noise.enabled)
+        o << "        Noise {\n            color " << format_vec3(m.noise.color1) << "\n            color "
+          << format_vec3(m.noise.color2) << "\n            octaves " << m.noise.octaves << "\n            frequency "
+          << format_float(m.noise.frequency) << "\n            amplitude " << format_float(m.noise.amplitude)
+          << "\n        }\n";
       o << "    }\n";
       if (m.emission != vec3(0.f)) emissive.insert(m.name);
       if (m.alpha_cutoff >= 0.f) cutouts.insert(m.name);

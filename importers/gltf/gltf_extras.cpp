@@ -147,6 +147,23 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     get_bool(*ex, "texture_modulates", &m.texture_modulates);
     get_bool(*ex, "two_sided_lighting", &m.two_sided_lighting);
     get_float(*ex, "refraction_index", &m.refraction_index);
+    get_bool(*ex, "specular_highlight", &m.specular_highlight);
+    get_bool(*ex, "back_faces_cast_shadows", &m.back_faces_cast_shadows);
+    if (ex->Has("noise") && ex->Get("noise").IsObject()) {
+      const Value& nv = ex->Get("noise");
+      SolidNoise n;
+      float octaves = -1.f;
+      if (get_vec3(nv, "color1", &n.color1) && get_vec3(nv, "color2", &n.color2) &&
+          get_float(nv, "octaves", &octaves) && get_float(nv, "frequency", &n.frequency) &&
+          get_float(nv, "amplitude", &n.amplitude) && octaves >= 0.f && octaves <= 64.f &&
+          octaves == std::floor(octaves)) {
+        n.enabled = true;
+        n.octaves = int(octaves);
+        m.noise = n;
+      } else {
+        warn(where + ": its noise extras are incomplete or out of range; the noise is dropped");
+      }
+    }
     if (!get_vec3(*ex, "emission", &m.emission)) m.emission = vec3(0.f);
     get_float(*ex, "alpha_cutoff", &m.alpha_cutoff);
     if (ex->Has("bump_texture") && ex->Get("bump_texture").IsNumber())
@@ -249,6 +266,7 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
       l.position = position;
       l.direction = direction;
       l.falloff = falloff;
+      if (!get_float(*ex, "attenuation_constant", &l.attenuation_constant)) l.attenuation_constant = 0.f;
       std::string original;
       if (get_string(*ex, "name", &original)) l.name = original;
     }

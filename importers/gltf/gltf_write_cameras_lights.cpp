@@ -122,6 +122,7 @@ int GltfBuilder::add_light(int li) {
   ex["name"] = Value(l.name);
   ex["color"] = vec_value(l.color);
   ex["falloff"] = num(l.falloff);
+  if (l.attenuation_constant != 0.f) ex["attenuation_constant"] = num(l.attenuation_constant);
   ex["position"] = vec_value(l.position);
   ex["direction"] = vec_value(l.direction);
   gl.extras = rayform_extras(std::move(ex));

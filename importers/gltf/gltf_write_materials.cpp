@@ -143,6 +143,14 @@ tinygltf::Material GltfBuilder::make_material(int mi, bool textured) {
   ex["texture_modulates"] = Value(m.texture_modulates);
   ex["two_sided_lighting"] = Value(m.two_sided_lighting);
   if (m.refraction_index != 0.f) ex["refraction_index"] = num(m.refraction_index);
+  if (!m.specular_highlight) ex["specular_highlight"] = Value(false);
+  if (!m.back_faces_cast_shadows) ex["back_faces_cast_shadows"] = Value(false);
+  if (m.noise.enabled)
+    ex["noise"] = Value(Value::Object{{"color1", vec_value(m.noise.color1)},
+                                      {"color2", vec_value(m.noise.color2)},
+                                      {"octaves", Value(m.noise.octaves)},
+                                      {"frequency", num(m.noise.frequency)},
+                                      {"amplitude", num(m.noise.amplitude)}});
   if (m.emission != vec3(0.f)) ex["emission"] = vec_value(m.emission);
   if (m.alpha_cutoff >= 0.f) ex["alpha_cutoff"] = num(m.alpha_cutoff);
   if (m.bump_texture != invalid) {

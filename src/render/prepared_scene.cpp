@@ -131,6 +131,8 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     if (m.specular != vec3(0.f)) f.specular = true;
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
     if (!m.double_sided) f.single_sided = true;
+    if (m.noise.enabled) f.noise = true;
+    if (!m.back_faces_cast_shadows) f.back_face_shadow_gaps = true;
     int t = m.diffuse_texture;
     if (t >= 0 && t < int(scene.textures.size())) {
       f.textures = true;
@@ -160,6 +162,16 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     *to_decode[j].second =
         decode_texture(scene.textures[to_decode[j].first], DecodeOptions{options.limits.texture_texels});
   });
+  // The six faces of a cube map are one picture's six sides: the same size.
+  for (size_t i = 1; i < p.cube_map.size(); ++i)
+    if (p.cube_map[i].width != p.cube_map[0].width || p.cube_map[i].height != p.cube_map[0].height) {
+      auto face = [&](size_t f) {
+        return scene.textures[size_t(scene.background.cube_map[f])].path + " (" + std::to_string(p.cube_map[f].width) +
+               "x" + std::to_string(p.cube_map[f].height) + ")";
+      };
+      throw Error(face(i) + ": cube map face of another size than " + face(0) +
+                  ": the six faces must be the same size");
+    }
   return p;
 }
 

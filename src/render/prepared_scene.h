@@ -28,8 +28,9 @@ struct Instance {
 };
 
 // What a scene uses. The render loop chooses its compiled path from
-// textures, specular and the skipped hits (alpha_cutout, single_sided) and
-// samples the background from cube_map. The renderer does not read the other
+// textures, specular and the skipped hits (alpha_cutout, single_sided),
+// samples the background from cube_map, computes hit points for noise and
+// traces closest-hit shadow rays for back_face_shadow_gaps. The renderer does not read the other
 // flags (its per-light and per-instance branches test the data itself);
 // prepare records them and tests/unit/prepare_test.cpp checks them.
 struct SceneFeatures {
@@ -43,6 +44,10 @@ struct SceneFeatures {
   bool single_sided = false;  // some material is single-sided (back faces culled)
   bool vertex_colors = false;
   bool falloff = false;  // some point light attenuates with distance
+  bool noise = false;    // some material's diffuse colour is solid noise (needs the hit point)
+  // Some material's back faces cast no shadow (Material::back_faces_cast_shadows):
+  // shadow rays then ask for the closest hit.
+  bool back_face_shadow_gaps = false;
 };
 
 // A light with what shading needs at every hit computed once.

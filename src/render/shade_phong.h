@@ -26,7 +26,7 @@ inline LightSample sample_local_light(const PreparedLight& pl, vec3 p) {
   s.distance = std::sqrt(dist2);
   s.to_light = s.distance > 0.f ? d / s.distance : vec3(0.f, 0.f, 1.f);
   s.color = l.color;
-  if (l.falloff > 0.f) s.color /= l.falloff * dist2;
+  if (l.falloff > 0.f) s.color /= l.attenuation_constant + l.falloff * dist2;
   if (l.range > 0.f) {  // glTF KHR_lights_punctual smooth range window
     float r = s.distance / l.range;
     float window = std::clamp(1.f - r * r * r * r, 0.f, 1.f);
@@ -65,10 +65,11 @@ inline vec3 diffuse_light(vec3 k, vec3 n, const LightSample& ls) {
   return std::max(0.f, glm::dot(ls.to_light, n)) * ls.color * k;
 }
 
-// Phong terms of one light (diffuse + specular), for view direction d (unit).
+// Phong terms of one light (diffuse + specular), for view direction d (unit);
+// no highlight for a material without one (Material::specular_highlight).
 inline vec3 phong_light(const Material& m, vec3 k, vec3 n, vec3 d, const LightSample& ls) {
   vec3 c = diffuse_light(k, n, ls);
-  if (m.specular != vec3(0.f)) {
+  if (m.specular_highlight && m.specular != vec3(0.f)) {
     vec3 r = d - 2.f * glm::dot(d, n) * n;
     float lr = glm::dot(ls.to_light, r);
     if (lr > 0.f) c += std::pow(lr, m.shininess) * ls.color * m.specular;

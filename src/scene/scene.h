@@ -46,8 +46,11 @@ struct Light {
   vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (directional, spot)
   vec3 position{0.f};              // point, spot
   vec3 color{1.f};                 // radiance scale, linear
-  // Point/spot attenuation: colour / (falloff * distance^2); 0 means none (course 2012).
+  // Point/spot attenuation: colour / (attenuation_constant + falloff * distance^2)
+  // when falloff > 0; falloff 0 means none (course 2012). attenuation_constant is
+  // 0 for the course's 2019 dialect, 1 for its assignment 5 (a5).
   float falloff = 0.f;
+  float attenuation_constant = 0.f;
   float range = 0.f;  // glTF range, 0 = infinite
   float spot_inner_deg = 0.f, spot_outer_deg = 45.f;
 };
@@ -85,12 +88,27 @@ struct UvTransform {
   }
 };
 
+// Solid noise replacing a material's diffuse colour in the diffuse term (the
+// course's a5 `Noise`; the ambient term keeps the diffuse colour): at world
+// point p, M = sin(frequency * p.x + amplitude * sum_{i < octaves}
+// perlin_noise(2^i p) / 2^i), w = (M + 1) / 2, colour = w color1 + (1 - w) color2
+// (render/perlin_noise.h).
+struct SolidNoise {
+  bool enabled = false;
+  vec3 color1{0.f}, color2{0.f};
+  int octaves = 0;
+  float frequency = 1.f, amplitude = 1.f;
+};
+
 // Phong material. Colours are linear RGB.
 struct Material {
   std::string name;
   vec3 diffuse{1.f};
   vec3 specular{0.f};
   float shininess = 0.f;  // Phong exponent
+  // false: no Phong highlight; `specular` only weights reflection and
+  // refraction (the course's a5 dialect, which reads shininess and ignores it).
+  bool specular_highlight = true;
   vec3 emission{0.f};
   int diffuse_texture = invalid;   // where the hit has uvs: K = diffuse x texel, or the texel alone (below)
   bool texture_modulates = false;  // true: K = diffuse * texel (assets); false: K = texel (course)
@@ -104,9 +122,18 @@ struct Material {
   // the normal as given (the course format, whose reference does not flip).
   // Refractive materials keep their normals: inside and outside matter there.
   bool two_sided_lighting = false;
-  float refraction_index = 0.f;  // 0: opaque
-  bool unlit = false;            // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
-  int bump_texture = invalid;    // parsed and kept (course 2019 `bump`)
+  // > 0: refractive, Schlick-weighted reflection and refraction into a medium
+  // of this index (rays carry the index of the medium they travel in, 1 for
+  // camera rays); 0: opaque (mirror reflection weighted by `specular`).
+  float refraction_index = 0.f;
+  // false: a shadow ray whose closest hit is this material's surface seen from
+  // behind (normal . direction to the light >= 0) does not block the light
+  // (the course's a5 rule: only the closest hit before the light counts, and
+  // only if it faces the shaded point). true: any surface on the way blocks.
+  bool back_faces_cast_shadows = true;
+  SolidNoise noise;            // enabled: replaces the diffuse colour in the diffuse term
+  bool unlit = false;          // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
+  int bump_texture = invalid;  // parsed and kept (course 2019 `bump`)
 };
 
 struct Sphere {

@@ -208,6 +208,29 @@ size=$(oiiotool "$order_dir/a.png" --echo "{TOP.width}x{TOP.height}" 2>/dev/null
 [ "$(ls -A "$order_dir" | wc -l)" -eq 12 ] || fail order "expected exactly the 12 pictures, found: $(ls -A "$order_dir")"
 [ $failures -eq $before ] && echo "ok   [order] flags in four orders give identical pictures"
 
+# The a5 dialect's bad input (COURSE_FORMAT.md "2012 assignment 5"): one line
+# with file:line:column, exit 1, no picture. Cube map faces are made by
+# rayform itself (2x2 and 4x4 .bmp pictures of the sphere scene).
+a5="$tmp/a5"; mkdir -p "$a5/sky" "$a5/oddsky"
+for face in right left up down front back; do
+  "$RAYFORM_BIN" -input "$in/ok.txt" -size 2 2 -output "$a5/sky/$face.bmp" -quiet
+  "$RAYFORM_BIN" -input "$in/ok.txt" -size 2 2 -output "$a5/oddsky/$face.bmp" -quiet
+done
+"$RAYFORM_BIN" -input "$in/ok.txt" -size 4 4 -output "$a5/oddsky/up.bmp" -quiet
+rm "$a5/sky/down.bmp"
+camera='PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }'
+printf '%s\nMaterials { numMaterials 1\n  Material { refractionIndex -1.3 } }\nGroup { numObjects 0 }\n' "$camera" >"$a5/refraction.txt"
+printf '%s\nMaterials { numMaterials 1 Material {\n  Noise { color 1 0 0 color 0 1 0 octaves -1 } } }\nGroup { numObjects 0 }\n' "$camera" >"$a5/octaves.txt"
+printf '%s\nMaterials { numMaterials 1 Material {\n  Noise { color 1 0 0 octaves 2 } } }\nGroup { numObjects 0 }\n' "$camera" >"$a5/colour.txt"
+printf '%s\nBackground {\n  cubeMap sky }\nGroup { numObjects 0 }\n' "$camera" >"$a5/face.txt"
+printf '%s\nBackground {\n  cubeMap oddsky }\nGroup { numObjects 0 }\n' "$camera" >"$a5/size.txt"
+expect_failure a5-refraction-negative "refraction\.txt:3:30: refractionIndex must be 0 \(opaque\) or positive" -input "$a5/refraction.txt" -size 8 8 -output o.png -dialect a5
+expect_failure a5-noise-octaves "octaves\.txt:3:43: octaves must be a whole number" -input "$a5/octaves.txt" -size 8 8 -output o.png
+expect_failure a5-noise-colour "colour\.txt:3:3: Noise needs two colours" render "$a5/colour.txt" -o o.png --size 8x8
+expect_failure a5-cube-face-missing "face\.txt:3:11: cube map folder has no down\.bmp" -input "$a5/face.txt" -size 8 8 -output o.png
+expect_failure a5-cube-face-size "up\.bmp \(4x4\): cube map face of another size than .*right\.bmp \(2x2\)" -input "$a5/size.txt" -size 8 8 -output o.png
+expect_usage_error a5-dialect-bogus "^rayform: -dialect expects 2012, 2019 or a5, got 'a6'$" -input "$a5/size.txt" -size 8 8 -output o.png -dialect a6
+
 # No temporary picture anywhere (they are written beside the target as
 # .NAME.tmpPID.EXT, e.g. beside taken.png above).
 stray=$(find "$tmp" -name '.*.tmp*')
