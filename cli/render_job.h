@@ -54,9 +54,14 @@ struct RenderJob {
   int gltf_scene = -1;        // glTF: scene index (-1: default)
   Limits limits;              // what the scene may claim (--limit), for loading and preparing
   FileAccess access;          // --confine
+  // Under mpirun, render the one frame with every rank (distributed_frame.h;
+  // every rank loads and prepares the scene, rank 0 writes the outputs).
+  // False for the renders of a batch, each on one rank (render_batch.h).
+  bool spread_frame = true;
 };
 
-// Runs the job; throws rayform::Error with a message for the user.
+// Runs the job; throws rayform::Error with a message for the user. Under
+// mpirun with spread_frame, collective: every rank runs the same job.
 void run_render_job(const RenderJob& job);
 
 // The options handed to render(): job.render with the default size when none
