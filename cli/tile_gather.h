@@ -10,9 +10,8 @@ namespace rayform::cli {
 
 // Collective. Each rank passes its result and the tiles it rendered into
 // it; afterwards rank 0's `result` holds every rank's tiles (the others' are
-// unchanged). Rank r > 0 sends its tiles' pixels in one message stream (in
-// pieces of at most 1 GiB); rank 0 receives rank by rank, so it holds at most
-// one rank's share besides the image.
+// unchanged). Ranks send in pieces of about 16 MiB, rank 0 receives rank by
+// rank: besides the image, each holds one piece at a time.
 void gather_tiles(RenderResult& result, const TileGrid& grid, const std::vector<int>& mine);
 
 }  // namespace rayform::cli
