@@ -5,6 +5,7 @@
 #include "work_counter.h"
 
 #include <chrono>
+#include <ctime>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -25,6 +26,7 @@ RenderResult render_frame_over_ranks(const PreparedScene& scene, const RenderOpt
     std::mutex mutex;
     WorkCounter counter;
     const auto t_render = clock::now();
+    const std::clock_t cpu_render = std::clock();
     render_tiles_from(
         scene, o,
         [&]() -> int {
@@ -37,6 +39,7 @@ RenderResult render_frame_over_ranks(const PreparedScene& scene, const RenderOpt
         },
         result);
     share->render_s = seconds_since(t_render);
+    share->render_cpu_s = double(std::clock() - cpu_render) / CLOCKS_PER_SEC;
     share->tiles = (long long)mine.size();
     const auto t_gather = clock::now();
     gather_tiles(result, grid, mine);

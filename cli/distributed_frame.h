@@ -12,9 +12,10 @@ namespace rayform::cli {
 
 // What one rank did, for --stats.
 struct FrameShare {
-  long long tiles = 0;    // tiles this rank rendered
-  double render_s = 0.0;  // seconds rendering them (until the counter ran out)
-  double gather_s = 0.0;  // seconds sending them to rank 0 (receiving, on rank 0)
+  long long tiles = 0;        // tiles this rank rendered
+  double render_s = 0.0;      // seconds rendering them (until the counter ran out)
+  double render_cpu_s = 0.0;  // CPU seconds of this process (all its threads) meanwhile: its work, whatever else runs
+  double gather_s = 0.0;      // seconds sending them to rank 0 (receiving, on rank 0)
 };
 
 // Collective. At rank 0 the whole image; elsewhere a result holding that

@@ -235,8 +235,8 @@ void run_render_job(const RenderJob& job) {
     // Each rank's share, so that imbalance shows (before rank 0 writes: the others wait for nothing after this).
     std::ostringstream line;
     line << "stats: rank " << rank.rank << " of " << rank.size << ": " << share.tiles << " of " << tile_grid(ro).count()
-         << " tiles, load " << load_s << " s, prepare " << prepare_s << " s, render " << share.render_s << " s, gather "
-         << share.gather_s << " s\n";
+         << " tiles, load " << load_s << " s, prepare " << prepare_s << " s, render " << share.render_s << " s (CPU "
+         << share.render_cpu_s << " s), gather " << share.gather_s << " s\n";
     for (const std::string& text : gather_text(line.str())) std::cerr << text;
   }
   if (spread && !rank.root()) return;  // rank 0 writes the outputs
