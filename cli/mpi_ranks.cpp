@@ -1,6 +1,8 @@
 // ranks.h over MPI (built when RAYFORM_MPI is on).
 #include "ranks.h"
 
+#include "mpi_wait.h"
+
 #include <mpi.h>
 
 #include <cstdlib>
@@ -22,7 +24,9 @@ bool launched_by_mpirun() {
 void finalize() {
   int finalized = 0;
   MPI_Finalized(&finalized);
-  if (!finalized) MPI_Finalize();
+  if (finalized) return;
+  barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
+  MPI_Finalize();
 }
 
 }  // namespace
@@ -50,14 +54,18 @@ std::vector<bool> gather_flags(bool flag) {
   if (!the_ranks.distributed()) return {flag};
   const int mine = flag ? 1 : 0;
   std::vector<int> all(size_t(the_ranks.size));
-  MPI_Allgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  MPI_Request request;  // the others may still be loading
+  MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+  wait_without_spinning(&request);
   return std::vector<bool>(all.begin(), all.end());
 }
 
 long long sum_over_ranks(long long value) {
   if (!the_ranks.distributed()) return value;
   long long sum = 0;
-  MPI_Allreduce(&value, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Request request;  // the others may still be rendering
+  MPI_Iallreduce(&value, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
+  wait_without_spinning(&request);
   return sum;
 }
 

@@ -7,6 +7,7 @@
 // (an 8K frame with every AOV in float is 1.46 GB).
 #include "tile_gather.h"
 
+#include "mpi_wait.h"
 #include "ranks.h"
 
 #include "rayform/render/tile_pixels.h"
@@ -37,11 +38,14 @@ void gather_tiles(RenderResult& result, const TileGrid& grid, const std::vector<
         bytes += tile_pixel_bytes(result, grid, std::span<const int>(&mine[end++], 1));
       const std::span<const int> tiles(mine.data() + first, end - first);
       const uint64_t header[2] = {tiles.size(), bytes};
-      MPI_Send(header, 2, MPI_UINT64_T, 0, tag_header, MPI_COMM_WORLD);
-      if (tiles.empty()) return;
-      pixels = pack_tile_pixels(result, grid, tiles);
-      MPI_Send(tiles.data(), int(tiles.size()), MPI_INT, 0, tag_tiles, MPI_COMM_WORLD);
-      MPI_Send(pixels.data(), int(pixels.size()), MPI_BYTE, 0, tag_pixels, MPI_COMM_WORLD);
+      if (!tiles.empty()) pixels = pack_tile_pixels(result, grid, tiles);
+      // Rank 0 may still be rendering: wait for it without spinning.
+      MPI_Request requests[3];
+      MPI_Isend(header, 2, MPI_UINT64_T, 0, tag_header, MPI_COMM_WORLD, &requests[0]);
+      if (tiles.empty()) return wait_without_spinning(requests, 1);
+      MPI_Isend(tiles.data(), int(tiles.size()), MPI_INT, 0, tag_tiles, MPI_COMM_WORLD, &requests[1]);
+      MPI_Isend(pixels.data(), int(pixels.size()), MPI_BYTE, 0, tag_pixels, MPI_COMM_WORLD, &requests[2]);
+      wait_without_spinning(requests, 3);
       first = end;
     }
   }
@@ -49,7 +53,9 @@ void gather_tiles(RenderResult& result, const TileGrid& grid, const std::vector<
   for (int from = 1; from < r.size; ++from) {
     for (;;) {
       uint64_t header[2] = {0, 0};
-      MPI_Recv(header, 2, MPI_UINT64_T, from, tag_header, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      MPI_Request request;  // rank `from` may still be rendering; the tiles and pixels follow at once
+      MPI_Irecv(header, 2, MPI_UINT64_T, from, tag_header, MPI_COMM_WORLD, &request);
+      wait_without_spinning(&request);
       if (header[0] == 0) break;
       tiles.resize(header[0]);
       pixels.resize(header[1]);

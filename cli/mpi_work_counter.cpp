@@ -4,6 +4,7 @@
 // window (osc/sm) makes that an atomic add in shared memory.
 #include "work_counter.h"
 
+#include "mpi_wait.h"
 #include "ranks.h"
 
 #include <mpi.h>
@@ -30,12 +31,13 @@ WorkCounter::WorkCounter() : impl_(std::make_unique<Impl>()) {
     *impl_->value = 0;
     MPI_Win_unlock(0, impl_->window);
   }
-  MPI_Barrier(MPI_COMM_WORLD);  // the counter is 0 before anyone takes a number
+  barrier_without_spinning();  // the counter is 0 before anyone takes a number
   MPI_Win_lock_all(MPI_MODE_NOCHECK, impl_->window);
 }
 
 WorkCounter::~WorkCounter() {
   if (impl_->window == MPI_WIN_NULL) return;
+  barrier_without_spinning();  // others may be busy with their last tile or render
   MPI_Win_unlock_all(impl_->window);
   MPI_Win_free(&impl_->window);  // collective: every rank has taken its last number
 }
