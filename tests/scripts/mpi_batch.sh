@@ -7,7 +7,8 @@
 # failed, 0 when none did. A turntable (--frames N) writes N pictures, frame k
 # being the --orbit camera turned by k * 360 / N degrees. Templates that
 # would write one file twice are usage errors (status 2). The one-process
-# part needs no MPI and no third-party data.
+# part needs no MPI and no third-party data. Under mpirun, info and convert
+# run on rank 0 alone.
 source "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -100,6 +101,12 @@ if (require_mpi >/dev/null); then
     fail mpi-turntable "exit $?"
   for k in 0 1 2 3; do cmp -s "spin/f000$k.png" "spin3/f000$k.png" || fail mpi-turntable "frame $k differs"; done
   [ $failures -eq 0 ] && echo "ok   [mpi-turntable] 4 frames over 3 ranks, identical"
+  # info and convert under mpirun: rank 0 alone reports and writes.
+  n=$(mpi_run 2 info in/box.obj 2>/dev/null | grep -c '^triangles:')
+  [ "$n" = 1 ] || fail mpi-info "expected one report from 2 ranks, got $n"
+  mpi_run 2 convert in/box.obj box.glb -q >convert.log 2>&1 || fail mpi-convert "exit $?: $(cat convert.log)"
+  [ -s box.glb ] || fail mpi-convert "box.glb not written"
+  [ $failures -eq 0 ] && echo "ok   [mpi-info-convert] one report, one file"
 else
   echo "note: MPI parts skipped ($(require_mpi))"
 fi
