@@ -61,7 +61,7 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
   return jobs;
 }
 
-int run_render_batch(const std::vector<RenderJob>& jobs, bool stats) {
+int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool stats) {
   using clock = std::chrono::steady_clock;
   const Ranks& r = ranks();
   const auto start = clock::now();
@@ -69,10 +69,22 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool stats) {
   double busy_s = 0.0;
   {
     WorkCounter counter;
+    // The scene of this rank's last turntable frame: the next frame of the
+    // same file starts from it instead of reading the file again.
+    std::shared_ptr<const LoadedScene> last;
+    std::string last_input;
     for (long long i; (i = counter.next()) < (long long)jobs.size();) {
-      const RenderJob& job = jobs[size_t(i)];
+      RenderJob job = jobs[size_t(i)];
       const auto t = clock::now();
       try {
+        if (job.orbit && turntable) {
+          if (!last || last_input != job.input) {
+            last.reset();  // one scene in memory at a time
+            last = std::make_shared<const LoadedScene>(load_job_scene(job));
+            last_input = job.input;
+          }
+          job.preloaded = last;
+        }
         run_render_job(job);
         ++done;
       } catch (const std::exception& e) {

@@ -30,7 +30,9 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
                                   const Turntable& turntable);
 
 // Collective. Runs the jobs; returns the exit status: 0 when every render
-// succeeded on every rank, else 1 (rank 0 then says how many failed).
-int run_render_batch(const std::vector<RenderJob>& jobs, bool stats);
+// succeeded on every rank, else 1 (rank 0 then says how many failed). With
+// `turntable`, a rank keeps the last file it read and renders the next
+// frame of the same file from it (a copy) instead of reading it again.
+int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool stats);
 
 }  // namespace rayform::cli

@@ -247,7 +247,8 @@ void add_render_command(CLI::App& app) {
     if (a->inputs.size() > 1 || a->turntable.frames > 1) {
       // A batch: each render on one rank (all in this process without mpirun).
       const std::vector<RenderJob> jobs = batch_jobs(a->job, a->inputs, a->turntable);
-      if (int status = run_render_batch(jobs, a->job.stats); status != 0) throw ReportedElsewhere("renders failed");
+      if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->job.stats); status != 0)
+        throw ReportedElsewhere("renders failed");
       return;
     }
     // One picture (over every rank under mpirun); a template names it as a batch would.

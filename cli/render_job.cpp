@@ -121,6 +121,8 @@ void agree_scene_ready(const std::exception_ptr& failure) {
 
 }  // namespace
 
+LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, ready_options(job).load); }
+
 void check_output_folder(const std::string& path, const std::string& what) {
   fs::path dir = fs::path(path).parent_path();
   std::error_code ec;
@@ -195,7 +197,8 @@ void run_render_job(const RenderJob& job) {
   double load_s = 0.0, prepare_s = 0.0;
   std::exception_ptr failure;
   try {
-    loaded = load_ready_scene(job.input, ready_options(job));
+    loaded = job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready_options(job))
+                           : load_ready_scene(job.input, ready_options(job));
     if (!quiet) {
       for (const std::string& w : loaded.warnings) warn(w);
       for (const std::string& n : loaded.notes) note(n);
