@@ -2,6 +2,7 @@
 // the course's own flags verbatim, and subcommands built with CLI11.
 #include "commands.h"
 #include "course_args.h"
+#include "ranks.h"
 #include "read_flags.h"
 #include "render_job.h"
 #include "rayform/scene/error.h"
@@ -32,6 +33,9 @@ Examples:
     rayform render scene.txt -o out.png --size 640x480 --depth 8:12:depth.png --normals normals.png
     rayform render duck.gltf -o duck.png --orbit 45,30      (camera around the model, which fits)
     rayform render duck.gltf -o duck.png --transparent --background '#336699'
+    rayform render a.glb b.obj c.txt -o 'out/{stem}.png'   (a batch; status 1 if any file failed)
+    rayform render duck.glb --frames 36 --orbit 0,20 -o 'spin/{frame}.png'   (a turntable)
+    mpirun -np 4 rayform render scene.txt -o out.png   (one frame over MPI ranks; batches spread too)
     rayform info scene.txt
 )";
 
@@ -47,6 +51,11 @@ Exit status:
 int run(int argc, char** argv) {
   // Ctrl-C: temporaries removed, a progress line ended, then this line.
   set_interrupt_message("rayform: interrupted");
+  if (ranks().distributed())
+    // mpirun ends the other ranks with SIGTERM when one fails or is killed.
+    set_interrupt_message("rayform: rank " + std::to_string(ranks().rank) + " of " + std::to_string(ranks().size) +
+                          " stopped: the MPI job was ended (a rank failed, was killed or interrupted); no output "
+                          "written");
   std::vector<std::string> args(argv + 1, argv + argc);
   if (is_course_command_line(args)) {
     run_render_job(parse_course_command_line(args));
@@ -54,7 +63,8 @@ int run(int argc, char** argv) {
   }
 
   CLI::App app{"rayform " RAYFORM_VERSION ": a fast and accurate ray caster for course .txt, OBJ and glTF scenes"};
-  app.set_version_flag("--version", "rayform " RAYFORM_VERSION);
+  app.set_version_flag("--version", std::string("rayform " RAYFORM_VERSION) +
+                                        (built_with_mpi() ? " (MPI: mpirun spreads renders over ranks)" : ""));
   app.footer(std::string(examples) + exit_status);
   app.require_subcommand(1);
   add_quiet_before_command(app);
@@ -85,16 +95,21 @@ int run(int argc, char** argv) {
 }  // namespace rayform::cli
 
 int main(int argc, char** argv) {
+  using rayform::cli::ranks;
   try {
+    rayform::cli::start_ranks(&argc, &argv);
     return rayform::cli::run(argc, argv);
   } catch (const rayform::cli::UsageError& e) {
-    std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
+    // Every rank parses the same command line: one message is enough.
+    if (ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
     return 2;
+  } catch (const rayform::cli::ReportedElsewhere&) {
+    return 1;
   } catch (const rayform::Error& e) {
-    std::cerr << "rayform: error: " << e.what() << "\n";
+    std::cerr << std::string("rayform: error: ") + e.what() + "\n";  // one write: ranks' lines stay whole
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "rayform: error: " << e.what() << "\n";
+    std::cerr << std::string("rayform: error: ") + e.what() + "\n";  // one write: ranks' lines stay whole
     return 1;
   }
 }

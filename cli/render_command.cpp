@@ -1,6 +1,9 @@
 #include "commands.h"
 #include "course_args.h"
+#include "output_names.h"
+#include "ranks.h"
 #include "read_flags.h"
+#include "render_batch.h"
 #include "render_job.h"
 
 #include <algorithm>
@@ -100,6 +103,8 @@ vec3 parse_background(const std::string& s) {
 
 struct RenderArgs {
   RenderJob job;
+  std::vector<std::string> inputs;
+  Turntable turntable;
   ReadFlags read;
   std::string size;  // empty: the default for the scene's format
   std::string depth, dialect, filter = "box", sampler = "stratified", color = "auto";
@@ -120,8 +125,16 @@ void add_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   RenderJob& job = a->job;
   CLI::App* render = app.add_subcommand("render", "Render a scene to an image");
-  render->add_option("scene", job.input, "Scene file (.txt, .obj, .gltf, .glb)")->required();
-  render->add_option("-o,--output", job.output, "Colour image (png, bmp, tga, jpg, exr, ...)")->required();
+  render
+      ->add_option("scene", a->inputs,
+                   "Scene files (.txt, .obj, .gltf, .glb); several render as a batch, each output named by -o's "
+                   "{stem}")
+      ->required();
+  render
+      ->add_option("-o,--output", job.output,
+                   "Colour image (png, bmp, tga, jpg, exr, ...); in a batch a template: {stem} is the input's name "
+                   "without folder and extension, {frame} the --frames number (0000, 0001, ...)")
+      ->required();
   auto size_text = [](SceneFormat f) {
     const RenderOptions d = default_render_options(f);
     return std::to_string(d.width) + "x" + std::to_string(d.height);
@@ -170,6 +183,17 @@ void add_render_command(CLI::App& app) {
                        "(degrees above the horizontal plane, -90 < EL < 90) and distance DIST (default: the model "
                        "fits)")
           ->type_name("AZ,EL[,DIST]");
+  CLI::Option* frames =
+      render
+          ->add_option("--frames", a->turntable.frames,
+                       "Turntable: N pictures around the model, the --orbit camera (default 0,0) turned about +y by "
+                       "--turntable/N degrees each; -o names them with {frame}")
+          ->check(CLI::PositiveNumber);
+  render
+      ->add_option("--turntable", a->turntable.sweep_deg,
+                   "Degrees the --frames pictures span (default 360: a loop whose last frame is one step short "
+                   "of the first)")
+      ->needs(frames);
   render
       ->add_option("--look-from", a->look_from,
                    "Camera position (without --look-at: looking at the centre of the scene's bounds)")
@@ -196,7 +220,7 @@ void add_render_command(CLI::App& app) {
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a, camera, orbit, fov, background, bounces] {
+  render->callback([a, camera, orbit, fov, background, bounces, frames] {
     a->job.default_size = a->size.empty();
     a->job.default_bounces = bounces->count() == 0;
     if (!a->job.default_size) parse_size(a->size, &a->job.render.width, &a->job.render.height);
@@ -212,6 +236,10 @@ void add_render_command(CLI::App& app) {
         throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");
       a->job.orbit = parse_orbit(a->orbit);
     }
+    if (frames->count() > 0 && (camera->count() > 0 || !a->look_from.empty() || !a->look_at.empty()))
+      throw UsageError(
+          "--frames turns the --orbit camera: it cannot be combined with --camera, --look-from or "
+          "--look-at");
     if ((a->job.orbit || a->job.frame) && camera->count() > 0)
       throw UsageError(std::string(a->job.orbit ? "--orbit" : "--frame") +
                        " replaces the file's cameras: it cannot be combined with --camera");
@@ -231,6 +259,17 @@ void add_render_command(CLI::App& app) {
     a->job.quiet = quiet_requested(a->read);
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
+    if (a->inputs.size() > 1 || a->turntable.frames > 1) {
+      // A batch: each render on one rank (all in this process without mpirun).
+      const std::vector<RenderJob> jobs = batch_jobs(a->job, a->inputs, a->turntable);
+      if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->job.stats); status != 0)
+        throw ReportedElsewhere("renders failed");
+      return;
+    }
+    // One picture (over every rank under mpirun); a template names it as a batch would.
+    a->job.input = a->inputs[0];
+    a->job = batch_jobs(a->job, a->inputs, a->turntable)[0];
+    a->job.spread_frame = true;
     run_render_job(a->job);
   });
 }

@@ -1,7 +1,9 @@
 #include "render_job.h"
 
 #include "course_args.h"
+#include "distributed_frame.h"
 #include "messages.h"
+#include "ranks.h"
 
 #include "progress.h"
 #include "rayform/render/aov_images.h"
@@ -22,7 +24,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <optional>
+#include <sstream>
 #include <thread>
 #include <filesystem>
 #include <iostream>
@@ -102,7 +106,34 @@ float background_from_display(float v) {
   return linear;
 }
 
+// Every rank of a spread frame has loaded and prepared the scene, or none
+// goes on: a rank that failed reports its error when rank 0 did not fail
+// (rank 0 reports its own; the others would say the same), rank 0 says that
+// another failed, and every rank stops with status 1.
+void agree_scene_ready(const std::exception_ptr& failure) {
+  const std::vector<bool> ok = gather_flags(!failure);
+  const Ranks& r = ranks();
+  if (failure && r.root()) std::rethrow_exception(failure);
+  if (failure && ok[0]) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::exception& e) {
+      throw Error("rank " + std::to_string(r.rank) + ": " + e.what());  // printed by main on any rank
+    }
+  }
+  if (failure) throw ReportedElsewhere("rank 0 reports the error");
+  if (std::find(ok.begin(), ok.end(), false) == ok.end()) return;
+  const int other = int(std::find(ok.begin(), ok.end(), false) - ok.begin());
+  if (r.root())
+    throw Error("rank " + std::to_string(other) +
+                " of the MPI job could not load or prepare the scene (its message "
+                "above): nothing written");
+  throw ReportedElsewhere("another rank failed");
+}
+
 }  // namespace
+
+LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, ready_options(job).load); }
 
 void check_output_folder(const std::string& path, const std::string& what) {
   fs::path dir = fs::path(path).parent_path();
@@ -167,37 +198,65 @@ void run_render_job(const RenderJob& job) {
   // 1 ms here): start them on a helper thread while the scene loads.
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
+  // Under mpirun every rank loads and prepares the scene, then renders a share of the frame.
+  const Ranks& rank = ranks();
+  const bool spread = job.spread_frame && rank.distributed();
+  // Warnings, notes and progress from rank 0 only: the others would repeat them.
+  const bool quiet = job.quiet || (spread && !rank.root());
   auto t_load = clock::now();
-  ReadyScene loaded = load_ready_scene(job.input, ready_options(job));
-  for (const std::string& w : loaded.warnings) warn(w);
-  for (const std::string& n : loaded.notes) note(n);
-  const ColorOutput color{loaded.color.scene, job.color};
-  if (job.background) {
-    // Display values: converted to linear where the pictures are seen
-    // through sRGB, kept where they are written as they are.
-    vec3& b = loaded.scene.background.color;
-    b = *job.background;
-    if (shown_through_srgb(color))
-      for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
+  ReadyScene loaded;
+  PreparedScene prepared;
+  double load_s = 0.0, prepare_s = 0.0;
+  std::exception_ptr failure;
+  try {
+    loaded = job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready_options(job))
+                           : load_ready_scene(job.input, ready_options(job));
+    if (!quiet) {
+      for (const std::string& w : loaded.warnings) warn(w);
+      for (const std::string& n : loaded.notes) note(n);
+    }
+    if (job.background) {
+      // Display values: converted to linear where the pictures are seen
+      // through sRGB, kept where they are written as they are.
+      vec3& b = loaded.scene.background.color;
+      b = *job.background;
+      if (shown_through_srgb(ColorOutput{loaded.color.scene, job.color}))
+        for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
+    }
+    load_s = seconds_since(t_load);
+    auto t_prepare = clock::now();
+    PrepareOptions po;
+    po.limits = job.limits;
+    prepared = prepare_scene(loaded.scene, po);
+    prepare_s = seconds_since(t_prepare);
+  } catch (...) {
+    if (!spread) throw;
+    failure = std::current_exception();
   }
-  double load_s = seconds_since(t_load);
-  auto t_prepare = clock::now();
-  PrepareOptions po;
-  po.limits = job.limits;
-  PreparedScene prepared = prepare_scene(loaded.scene, po);
-  double prepare_s = seconds_since(t_prepare);
+  if (spread) agree_scene_ready(failure);
+  const ColorOutput color{loaded.color.scene, job.color};
 
   // Depth and normal images: 2019's conventions, or 2012's (also for a5).
   bool course_2019 = loaded.format == SceneFormat::course_txt && loaded.dialect == CourseDialect::v2019;
   bool course_2012 = loaded.format == SceneFormat::course_txt && loaded.dialect != CourseDialect::v2019;
   RenderOptions ro = job_render_options(job);
   if (job.default_bounces) ro.bounces = loaded.render.bounces;
-  Progress progress("rendering", job.quiet);
+  Progress progress("rendering", quiet || !rank.root());
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
   auto t_render = clock::now();
-  RenderResult result = render(prepared, ro);
+  FrameShare share;
+  RenderResult result = spread ? render_frame_over_ranks(prepared, ro, &share) : render(prepared, ro);
   double render_s = seconds_since(t_render);
   progress.finish();
+  if (spread && job.stats) {
+    // Each rank's share, so that imbalance shows (before rank 0 writes: the others wait for nothing after this).
+    std::ostringstream line;
+    line << "stats: rank " << rank.rank << " of " << rank.size << ": " << share.tiles << " of " << tile_grid(ro).count()
+         << " tiles, load " << load_s << " s, prepare " << prepare_s << " s, render " << share.render_s << " s (CPU "
+         << share.render_cpu_s << " s), gather " << share.gather_s << " s\n";
+    for (const std::string& text : gather_text(line.str())) std::cerr << text;
+  }
+  if (spread && !rank.root()) return;  // rank 0 writes the outputs
   auto t_write = clock::now();
   // All outputs appear together or not at all.
   OutputFiles files(job.output);

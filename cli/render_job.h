@@ -7,6 +7,7 @@
 #include "rayform/render/render.h"
 #include "rayform/scene/scene_defaults.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -57,9 +58,22 @@ struct RenderJob {
   int gltf_scene = -1;        // glTF: scene index (-1: default)
   Limits limits;              // what the scene may claim (--limit), for loading and preparing
   FileAccess access;          // --confine
+  // Under mpirun, render the one frame with every rank (distributed_frame.h;
+  // every rank loads and prepares the scene, rank 0 writes the outputs).
+  // False for the renders of a batch, each on one rank (render_batch.h).
+  bool spread_frame = true;
+  // The scene as loaded from `input` with this job's reading options
+  // (load_job_scene), when the caller loaded it already: a turntable's
+  // frames on one rank load the file once (render_batch.h).
+  std::shared_ptr<const LoadedScene> preloaded;
 };
 
-// Runs the job; throws rayform::Error with a message for the user.
+// `job.input` as run_render_job reads it (before its camera and lights are
+// placed), for RenderJob::preloaded. Throws rayform::Error.
+LoadedScene load_job_scene(const RenderJob& job);
+
+// Runs the job; throws rayform::Error with a message for the user. Under
+// mpirun with spread_frame, collective: every rank runs the same job.
 void run_render_job(const RenderJob& job);
 
 // The options handed to render(): job.render with the default size when none

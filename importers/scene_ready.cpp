@@ -18,8 +18,12 @@ SceneColors scene_colors(SceneFormat format) {
 }
 
 ReadyScene load_ready_scene(const std::string& path, const ReadyOptions& options) {
+  return make_scene_ready(load_scene(path, options.load), path, options);
+}
+
+ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const ReadyOptions& options) {
   ReadyScene ready;
-  static_cast<LoadedScene&>(ready) = load_scene(path, options.load);
+  static_cast<LoadedScene&>(ready) = std::move(loaded);
   Scene& scene = ready.scene;
   const bool asset = ready.format != SceneFormat::course_txt;
   if (options.orbit) {

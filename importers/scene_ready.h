@@ -69,4 +69,9 @@ struct ReadyScene : LoadedScene {
 // does, or for an orbit orbit_camera refuses.
 ReadyScene load_ready_scene(const std::string& path, const ReadyOptions& options = {});
 
+// The same for a scene already loaded from `path` (with options.load): the
+// defaults above applied to `loaded`. For a program that renders one file
+// many times with different cameras (a turntable's frames) and loads it once.
+ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const ReadyOptions& options = {});
+
 }  // namespace rayform

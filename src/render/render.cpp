@@ -221,8 +221,9 @@ struct PixelOut {
     for (int k = 0; k < 3; ++k) quantised.pixels[i + k] = quantize_sample(srgb, c[k]);
 }
 
+// Renders every tile (next == nullptr) or those *next hands out.
 template <bool Textures, bool Specular, bool Skips>
-void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res) {
+void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& res, const NextTile* next) {
   const Scene& s = *p.scene;
   const int width = o.width, height = o.height;
   const CameraFrame frame = make_camera_frame(s.cameras[o.camera], width, height);
@@ -236,8 +237,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const Tracer<Textures, Specular, Skips> tracer{p, o, s};
   const bool aovs = o.depth || o.normals || o.albedo;
   const bool alpha = o.alpha != AlphaMode::none, premultiplied = o.alpha == AlphaMode::premultiplied;
-  const int ts = std::max(1, o.tile_size);
-  const int tiles_x = (width + ts - 1) / ts, tiles_y = (height + ts - 1) / ts, tiles = tiles_x * tiles_y;
+  const TileGrid layout = tile_grid(o);
+  const int ts = layout.tile_size, tiles_x = layout.tiles_x, tiles = layout.count();
   const bool grid = o.grid.on(), adaptive = !grid && o.target_error.has_value();
   // One ray through each pixel centre (the course's default): the fast paths below.
   const bool centre_only = !grid && !adaptive && o.spp <= 1 && o.sampler == PixelSampler::stratified;
@@ -549,6 +550,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   std::unique_ptr<tbb::global_control> limit;
   if (o.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+  // Every tile, each to a worker.
   auto each_tile = [&](const auto& tile_fn) {
     if (o.threads == 1) {
       for (int t = 0; t < tiles; ++t) tile_fn(t);
@@ -558,14 +560,30 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
       });
     }
   };
+  // The tiles *next hands out (all of them without it), each to a worker.
+  auto our_tiles = [&](const auto& tile_fn) {
+    if (!next) return each_tile(tile_fn);
+    auto work = [&] {
+      for (int t; (t = (*next)()) >= 0;) {
+        if (t >= tiles)
+          throw Error("render: tile " + std::to_string(t) + " handed out, the image has " + std::to_string(tiles));
+        tile_fn(t);
+      }
+    };
+    if (o.threads == 1) work();
+    else tbb::parallel_for(0, tbb::this_task_arena::max_concurrency(), [&](int) { work(); });
+  };
+  // The second pass of grid and adaptive sampling reads the first pass's
+  // samples around each tile, so with tiles handed out the first pass still
+  // covers the whole image (every caller makes it) and only the second is shared.
   if (grid) {
     each_tile(grid_sample_tile);
-    each_tile(grid_filter_tile);
+    our_tiles(grid_filter_tile);
   } else if (adaptive) {
     each_tile(adaptive_first_tile);
-    each_tile(render_tile);
+    our_tiles(render_tile);
   } else {
-    each_tile(render_tile);
+    our_tiles(render_tile);
   }
   const uint64_t pixels = uint64_t(width) * uint64_t(height);
   res.samples = grid       ? pixels * uint64_t(grid_samples * grid_samples)
@@ -582,7 +600,25 @@ PathChoice choose_path(const PreparedScene& p, const RenderOptions& o) {
   return {p.features.textures, p.features.specular, p.features.alpha_cutout || p.features.single_sided};
 }
 
+// Dispatch to one of the eight compiled paths.
+void render_path(const PreparedScene& p, const RenderOptions& o, RenderResult& res, const NextTile* next) {
+  PathChoice c = choose_path(p, o);
+  int key = (c.textures ? 4 : 0) | (c.specular ? 2 : 0) | (c.skips ? 1 : 0);
+  switch (key) {
+    case 0: render_tiles<false, false, false>(p, o, res, next); break;
+    case 1: render_tiles<false, false, true>(p, o, res, next); break;
+    case 2: render_tiles<false, true, false>(p, o, res, next); break;
+    case 3: render_tiles<false, true, true>(p, o, res, next); break;
+    case 4: render_tiles<true, false, false>(p, o, res, next); break;
+    case 5: render_tiles<true, false, true>(p, o, res, next); break;
+    case 6: render_tiles<true, true, false>(p, o, res, next); break;
+    default: render_tiles<true, true, true>(p, o, res, next); break;
+  }
+}
+
 }  // namespace
+
+TileGrid tile_grid(const RenderOptions& o) { return make_tile_grid(o.width, o.height, o.tile_size); }
 
 std::string render_path_name(const PreparedScene& p, const RenderOptions& o) {
   if (o.generic) return "generic";
@@ -612,7 +648,7 @@ std::string render_options_problem(const RenderOptions& o) {
   return "";
 }
 
-RenderResult render(const PreparedScene& p, const RenderOptions& o) {
+RenderResult allocate_render_result(const PreparedScene& p, const RenderOptions& o) {
   const Scene& s = *p.scene;
   if (std::string problem = render_options_problem(o); !problem.empty()) throw Error("render: " + problem);
   if (std::string problem = render_memory_problem(o, available_memory_bytes()); !problem.empty())
@@ -634,21 +670,19 @@ RenderResult render(const PreparedScene& p, const RenderOptions& o) {
   if (o.normals) res.normals.assign(size_t(width) * height, vec3(0.f));
   if (o.albedo) allocate_color(res.albedo, res.albedo8);
   if (o.alpha != AlphaMode::none) res.coverage.assign(size_t(width) * height, 0.f);
-
-  PathChoice c = choose_path(p, o);
-  // Dispatch to one of the eight compiled paths.
-  int key = (c.textures ? 4 : 0) | (c.specular ? 2 : 0) | (c.skips ? 1 : 0);
-  switch (key) {
-    case 0: render_tiles<false, false, false>(p, o, res); break;
-    case 1: render_tiles<false, false, true>(p, o, res); break;
-    case 2: render_tiles<false, true, false>(p, o, res); break;
-    case 3: render_tiles<false, true, true>(p, o, res); break;
-    case 4: render_tiles<true, false, false>(p, o, res); break;
-    case 5: render_tiles<true, false, true>(p, o, res); break;
-    case 6: render_tiles<true, true, false>(p, o, res); break;
-    default: render_tiles<true, true, true>(p, o, res); break;
-  }
   return res;
+}
+
+RenderResult render(const PreparedScene& p, const RenderOptions& o) {
+  RenderResult res = allocate_render_result(p, o);
+  render_path(p, o, res, nullptr);
+  return res;
+}
+
+void render_tiles_from(const PreparedScene& p, const RenderOptions& o, const NextTile& next_tile, RenderResult& res) {
+  if (res.width != o.width || res.height != o.height || res.color_format != o.color_format)
+    throw Error("render: the result was allocated for other options");
+  render_path(p, o, res, &next_tile);
 }
 
 }  // namespace rayform

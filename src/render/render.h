@@ -7,6 +7,7 @@
 #include "rayform/render/grid_filter.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/sampling.h"
+#include "rayform/render/tile_grid.h"
 
 #include <cstdint>
 #include <functional>
@@ -62,8 +63,8 @@ struct RenderOptions {
   ColorFormat color_format = ColorFormat::linear_float;
   bool generic = false;  // force the general path (no feature specialisation)
   bool packets = true;   // camera rays of a one-mesh scene eight at a time (the same image)
-  int tile_size = 16;
-  // Called with the fraction of tiles done (from worker threads, serialised).
+  int tile_size = 16;    // the unit of work (tile_grid.h)
+  // Called with the fraction of tiles done here (from worker threads, serialised).
   std::function<void(float)> progress;
 };
 
@@ -99,6 +100,29 @@ std::string render_options_problem(const RenderOptions& options);
 // Throws rayform::Error for options render_options_problem refuses, or a
 // camera index the scene does not have.
 RenderResult render(const PreparedScene& scene, const RenderOptions& options);
+
+// The tiles render() splits an image of these options into.
+TileGrid tile_grid(const RenderOptions& options);
+
+// Rendering part of an image, for a caller that spreads the tiles over
+// processes (cli/'s MPI driver) or picks its own order:
+//   RenderResult r = allocate_render_result(scene, options);
+//   render_tiles_from(scene, options, next_tile, r);
+// allocate_render_result checks as render() does (throws rayform::Error) and
+// returns the buffers render() fills, holding the values of a pixel no tile
+// wrote (colour 0, depth infinity, normals 0, coverage 0).
+RenderResult allocate_render_result(const PreparedScene& scene, const RenderOptions& options);
+// Renders the tiles (indices into tile_grid(options)) that `next_tile`
+// returns until it returns a negative number, each into `result` (from
+// allocate_render_result with the same options): every pixel of a tile gets
+// the values render() gives it, whichever tiles and order. `next_tile` is
+// called from the worker threads, so it must be thread-safe (one call at a
+// time is not promised); with options.threads == 1 every call is on the
+// calling thread. options.progress, when set, gets the fraction of all
+// tiles rendered by this call.
+using NextTile = std::function<int()>;
+void render_tiles_from(const PreparedScene& scene, const RenderOptions& options, const NextTile& next_tile,
+                       RenderResult& result);
 
 // Which specialised path render() takes for this scene and these options
 // ("generic" when forced or when no specialisation applies); for reports.

@@ -65,3 +65,21 @@ Materials { numMaterials 1 Material { diffuseColor 0.8 0.3 0.2 } }
 Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 1.5 } }
 EOF
 }
+
+# For the MPI tests (mpi_*.sh): skips (77) unless mpirun is installed and
+# rayform was built with MPI (RAYFORM_MPI; `rayform --version` says so).
+# Sets the OpenMPI environment a sandbox or CI container needs: shared memory
+# and loopback transports only (no network interfaces to probe), no ssh/rsh
+# agent (every rank is local), ranks allowed to outnumber cores, root allowed.
+require_mpi() {
+  command -v mpirun >/dev/null || { echo "SKIPPED: mpirun not found (apt-get install openmpi-bin libopenmpi-dev)"; exit 77; }
+  "$RAYFORM_BIN" --version | grep -q MPI || { echo "SKIPPED: rayform built without MPI (RAYFORM_MPI=OFF)"; exit 77; }
+  export OMPI_MCA_btl=self,vader OMPI_MCA_plm_rsh_agent= OMPI_MCA_rmaps_base_oversubscribe=1
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+}
+
+# mpi_run N ARGS...: rayform ARGS... as N ranks.
+mpi_run() {
+  local n=$1; shift
+  mpirun --allow-run-as-root --oversubscribe -np "$n" "$RAYFORM_BIN" "$@"
+}

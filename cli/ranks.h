@@ -1,0 +1,47 @@
+// This process's place in an MPI job, and the few operations across ranks
+// that the distributed drivers (distributed_frame.h, render_batch.h) need.
+// MPI is started only when the process was launched by mpirun (or srun with
+// PMIx): a rayform started on its own, or built without MPI (RAYFORM_MPI
+// off), is rank 0 of 1 and every operation here is local. The interface has
+// no MPI type, so nothing outside the mpi_*.cpp files includes <mpi.h>.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rayform::cli {
+
+struct Ranks {
+  int rank = 0, size = 1;
+  bool root() const { return rank == 0; }
+  bool distributed() const { return size > 1; }
+};
+
+// Whether this rayform was built with MPI.
+bool built_with_mpi();
+
+// Starts MPI when launched by mpirun (once, first thing in main); MPI is
+// finalised at exit. Returns ranks().
+Ranks start_ranks(int* argc, char*** argv);
+const Ranks& ranks();
+
+// Collective (every rank calls them, in the same order):
+// Each rank's flag, by rank, on every rank.
+std::vector<bool> gather_flags(bool flag);
+// The sum of every rank's `value`, on every rank.
+long long sum_over_ranks(long long value);
+// Every rank's text, by rank, at rank 0 (elsewhere empty).
+std::vector<std::string> gather_text(const std::string& text);
+
+// A failure another rank reports: main exits with status 1, printing nothing
+// (so that N ranks failing alike print one message, rank 0's).
+struct ReportedElsewhere : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Prints `message` on stderr and ends every rank of the job with exit
+// status 1 (MPI_Abort; exit(1) when not distributed).
+[[noreturn]] void abort_ranks(const std::string& message);
+
+}  // namespace rayform::cli

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# One frame over MPI ranks (docs/distributed.md): `mpirun -np N rayform render
+# ...` writes exactly the files, byte for byte, that one process writes with
+# the same options: colour and every AOV (depth, normals, albedo, coverage as
+# the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
+# own command line too), an asset, and a glass scene with --spp 16 --shadows
+# --bounces 3; --stats shows each rank's share of the tiles, which add up to
+# the frame's.
+source "$(dirname "$0")/lib.sh"
+require_mpi
+require_shared
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+failures=0
+fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
+
+course=$RAYFORM_SHARED/course
+# name | arguments before the outputs | outputs (each NAME, replaced by one/NAME and n/NAME)
+cases=(
+  "course|render $course/2012/scene07_shine.txt --size 97x61 -q|-o @c.png --depth 8:18:@d.png --normals @n.png"
+  "asset|render $RAYFORM_SOURCE_DIR/scenes/assets/features.glb --size 80x67 --orbit 30,20 -q|-o @c.png --transparent --normals @n.png --albedo @a.png --depth 1:9:@d.png"
+  "asset-float|render $RAYFORM_SOURCE_DIR/scenes/assets/features.glb --size 53x40 -q|-o @c.exr --transparent --albedo @a.exr"
+  "glass|render $course/2012-a5/scene13_diamond.txt --size 64x48 --spp 16 --shadows --bounces 3 -q|-o @c.png --albedo @a.png --normals @n.png"
+  "course-line|-input $course/2019/scene06_bunny_1k.txt -size 50 50 -dialect 2019 -shadows -quiet|-output @c.png -depth 8 12 @d.png -normals @n.png"
+  # Two-pass sampling: the first pass covers the whole image on every rank, the second is shared.
+  "grid-filter|-input $course/2012-a5/scene10_sphere.txt -size 61 47 -jitter -filter -shadows -quiet|-output @c.png"
+  "adaptive|render $course/2012-a5/scene10_sphere.txt --size 61x47 --target-error 0.01 --shadows -q|-o @c.png --albedo @a.png"
+)
+for c in "${cases[@]}"; do
+  IFS='|' read -r name args outs <<<"$c"
+  before=$failures
+  mkdir -p "one/$name"
+  # shellcheck disable=SC2086  # word splitting intended
+  "$RAYFORM_BIN" $args ${outs//@/one/$name/} 2>"one/$name.err" || { fail "$name" "one process: $(cat "one/$name.err")"; continue; }
+  for np in 2 3; do
+    mkdir -p "n$np/$name"
+    # shellcheck disable=SC2086
+    mpi_run "$np" $args ${outs//@/n$np/$name/} >"n$np/$name.log" 2>&1 ||
+      { fail "$name" "$np ranks: exit $?: $(cat "n$np/$name.log")"; continue; }
+    for f in "one/$name"/*; do
+      g=n$np/$name/$(basename "$f")
+      if [ ! -f "$g" ]; then fail "$name" "$np ranks wrote no $(basename "$f")"
+      elif [ "${f##*.}" = exr ]; then
+        # OpenEXR files hold the time they were written: compare the pixels, exactly.
+        idiff -fail 0 -warn 0 "$f" "$g" >/dev/null || fail "$name" "$np ranks: $(basename "$f")'s pixels differ"
+      elif ! cmp -s "$f" "$g"; then fail "$name" "$np ranks: $(basename "$f") differs from the one-process file"
+      fi
+    done
+    extra=$(find "n$np/$name" -type f | wc -l) want=$(find "one/$name" -type f | wc -l)
+    [ "$extra" -eq "$want" ] || fail "$name" "$np ranks left $extra files, one process $want"
+  done
+  [ "$failures" -eq "$before" ] && echo "ok   [$name] identical for 2 and 3 ranks ($(find "one/$name" -type f | wc -l) files)"
+done
+
+# --stats: one line per rank, rank 0 first, tiles adding up to the frame's
+# (160x120 in tiles of 16: 10 x 8 = 80), and ranks other than 0 rendered some
+# of them (so the pictures above went through the gather).
+mpi_run 3 render "$course/2012-a5/scene13_diamond.txt" --size 160x120 --spp 16 --shadows --bounces 3 -o stats.png \
+  --stats 2>stats.err >/dev/null || fail stats "exit $?: $(cat stats.err)"
+ranks=$(grep -c '^stats: rank [0-2] of 3: [0-9]* of 80 tiles' stats.err)
+[ "$ranks" -eq 3 ] || fail stats "expected 3 per-rank lines, got: $(cat stats.err)"
+sum=$(sed -nE 's/^stats: rank [0-9]+ of 3: ([0-9]+) of 80 tiles.*/\1/p' stats.err | awk '{s += $1} END {print s}')
+others=$(sed -nE 's/^stats: rank [12] of 3: ([0-9]+) of 80 tiles.*/\1/p' stats.err | awk '{s += $1} END {print s}')
+[ "$sum" = 80 ] || fail stats "the ranks' tiles add up to $sum, not 80: $(cat stats.err)"
+[ "${others:-0}" -gt 0 ] || fail stats "ranks 1 and 2 rendered no tile: $(cat stats.err)"
+grep -q '^stats: load' stats.err || fail stats "no whole-job stats line from rank 0: $(cat stats.err)"
+[ "$(grep -c '^stats: load' stats.err)" -eq 1 ] || fail stats "the whole-job line printed more than once"
+[ $failures -eq 0 ] && echo "ok   [stats] 3 ranks report $sum tiles in all, $others by ranks 1 and 2"
+
+# Every rank fails to read a bad scene: one message (rank 0's), status 1, no file.
+printf 'v 0 0 0\nf 1 2 3\n' >bad.obj
+mpi_run 2 render bad.obj -o bad.png >bad.log 2>&1; rc=$?
+[ $rc -eq 1 ] || fail bad-scene "exit $rc, expected 1: $(cat bad.log)"
+[ "$(grep -c 'bad.obj' bad.log)" -eq 1 ] || fail bad-scene "expected one line naming bad.obj: $(cat bad.log)"
+[ -e bad.png ] && fail bad-scene "an output was written"
+[ $failures -eq 0 ] && echo "ok   [bad-scene] one message, status 1, no output"
+
+echo "$failures failure(s)"
+[ $failures -eq 0 ]
