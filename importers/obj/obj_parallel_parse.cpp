@@ -315,27 +315,38 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   });
   if (std::find(split_ok.begin(), split_ok.end(), 0) != split_ok.end()) return false;
 
-  size_t groups_before = 0;  // g/o lines before the chunk: the section its first faces belong to
-  size_t open_section = ~size_t(0);
-  for (size_t k = 0; k < n; ++k) {
-    ChunkResult& r = results[k];
-    size_t next = 0;
-    for (size_t j = 0; j < scans[k].section_faces.size(); ++j) {
-      if (scans[k].section_faces[j] == 0) continue;
-      tinyobj::shape_t& piece = r.shapes[next++];
-      const size_t section = groups_before + j;
-      if (section == open_section) {
-        tinyobj::mesh_t& to = o.shapes.back().mesh;
-        append(to.indices, piece.mesh.indices);
-        append(to.num_face_vertices, piece.mesh.num_face_vertices);
-        append(to.material_ids, piece.mesh.material_ids);
-        append(to.smoothing_group_ids, piece.mesh.smoothing_group_ids);
-      } else {
-        o.shapes.push_back(std::move(piece));
-        open_section = section;
-      }
+  // The pieces of each section (g/o lines before the piece's chunk, plus its
+  // place in the chunk) joined; each shape's arrays allocated once at their
+  // full size (growing them piece by piece costs page faults on every copy).
+  struct Piece {
+    size_t chunk, shape, section;
+  };
+  std::vector<Piece> pieces;
+  for (size_t k = 0, groups_before = 0; k < n; groups_before += scans[k].section_faces.size() - 1, ++k)
+    for (size_t j = 0, next = 0; j < scans[k].section_faces.size(); ++j)
+      if (scans[k].section_faces[j] != 0) pieces.push_back({k, next++, groups_before + j});
+  for (size_t first = 0; first < pieces.size();) {
+    size_t last = first + 1, faces = 0, corners = 0;
+    while (last < pieces.size() && pieces[last].section == pieces[first].section) ++last;
+    for (size_t i = first; i < last; ++i) {
+      const tinyobj::mesh_t& m = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+      faces += m.num_face_vertices.size();
+      corners += m.indices.size();
     }
-    groups_before += scans[k].section_faces.size() - 1;
+    o.shapes.push_back(std::move(results[pieces[first].chunk].shapes[pieces[first].shape]));
+    tinyobj::mesh_t& to = o.shapes.back().mesh;
+    to.indices.reserve(corners);
+    to.num_face_vertices.reserve(faces);
+    to.material_ids.reserve(faces);
+    to.smoothing_group_ids.reserve(faces);
+    for (size_t i = first + 1; i < last; ++i) {
+      const tinyobj::mesh_t& piece = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+      append(to.indices, piece.indices);
+      append(to.num_face_vertices, piece.num_face_vertices);
+      append(to.material_ids, piece.material_ids);
+      append(to.smoothing_group_ids, piece.smoothing_group_ids);
+    }
+    first = last;
   }
   return true;
 }
