@@ -12,6 +12,7 @@
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
 #include "rayform/scene/error.h"
+#include "test_importers.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -43,21 +44,7 @@ std::string error_of(const std::string& text, const std::string& path = "t.txt",
   return "";
 }
 
-// "path:line:column" of the first `needle` in `text`.
-std::string where(const std::string& text, const std::string& needle, const std::string& path = "t.txt") {
-  const size_t pos = text.find(needle);
-  if (pos == std::string::npos) return "<'" + needle + "' not in the text>";
-  int line = 1, col = 1;
-  for (size_t i = 0; i < pos; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return path + ":" + std::to_string(line) + ":" + std::to_string(col);
-}
+using test::where;
 
 void write_file(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
@@ -295,7 +282,7 @@ TEST(CourseA5Errors, CubeMapFaces) {
   fs::remove(dir / "sky" / "up.bmp");
   const std::string text = kCamera + "Background {\n  cubeMap sky }\nGroup { numObjects 0 }\n";
   std::string m = error_of(text, path);
-  EXPECT_EQ(m.rfind(where(text, "sky }", path) + ": ", 0), 0u) << m;
+  EXPECT_EQ(m.rfind(where(text, "sky }", 1, path) + ": ", 0), 0u) << m;
   EXPECT_NE(m.find("cube map folder has no up.bmp"), std::string::npos) << m;
   // A face of another size: refused when the faces are decoded, naming both files.
   write_picture(dir / "sky" / "up.bmp", 4);

@@ -6,6 +6,7 @@
 #include "rayform/render/render.h"
 #include "rayform/scene/error.h"
 #include "rayform/scene/node_walk.h"
+#include "test_importers.h"
 #include "test_paths.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -33,27 +34,7 @@ std::string error_of(const std::string& text, const std::string& path = "t.txt",
   return "";
 }
 
-// "path:line:column" of the `occurrence`-th (1-based) `needle` in `text`,
-// counted independently of the reader: lines and columns from 1, a column per byte.
-std::string where(const std::string& text, const std::string& needle, int occurrence = 1,
-                  const std::string& path = "t.txt") {
-  size_t pos = std::string::npos, from = 0;
-  for (int i = 0; i < occurrence; ++i) {
-    pos = text.find(needle, from);
-    if (pos == std::string::npos) return "<'" + needle + "' not in the text>";
-    from = pos + 1;
-  }
-  int line = 1, col = 1;
-  for (size_t i = 0; i < pos; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return path + ":" + std::to_string(line) + ":" + std::to_string(col);
-}
+using test::where;
 
 // Position just after the last character (where end-of-file errors point).
 std::string end_of(const std::string& text, const std::string& path = "t.txt") {
