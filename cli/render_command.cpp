@@ -162,8 +162,10 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"stratified", "random"}))
       ->capture_default_str();
   render->add_option("--target-error", job.render.target_error,
-                     "Adaptive sampling: rounds of " + std::to_string(adaptive_round_samples) +
-                         " samples per pixel until the standard error of its mean is below E in every channel "
+                     "Adaptive sampling: rounds of stratified samples per pixel (" +
+                         std::to_string(adaptive_first_round_samples) + ", then up to " +
+                         std::to_string(adaptive_round_samples) + ", then " + std::to_string(adaptive_round_samples) +
+                         " more) until the standard error of its mean is below E in every channel "
                          "(in the output encoding), or --max-spp (replaces --spp)");
   render->add_option("--max-spp", job.render.max_spp, "Most samples per pixel of --target-error")
       ->capture_default_str();

@@ -311,20 +311,23 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     }
   };
 
-  // Adaptive sampling (RenderOptions::target_error): rounds of samples until
-  // the standard error of the mean, per channel in the output encoding, is
-  // below the target (Welford's running variance of the encoded values). Two
-  // passes over the tiles: every pixel's first round (kept in
-  // adaptive_states, allocated once before the tiles), then the rest, where a
-  // pixel the first round left settled takes one more round when a neighbour
-  // (of the 8) is not settled: an edge that crosses a corner of a pixel by
-  // less than one stratum can escape its first 16 samples but not its
-  // neighbours'. The second pass reads only first-round states, so no pixel
-  // depends on the order of the tiles.
+  // Adaptive sampling (RenderOptions::target_error): rounds of samples
+  // (adaptive_round_end: 4, 16, 32, ...) until the standard error of the
+  // mean, per channel in the output encoding, is below the target (Welford's
+  // running variance of the encoded values). Two passes over the tiles:
+  // every pixel's first round of 4 (kept in adaptive_states, allocated once
+  // before the tiles), then the rest, where a pixel the first round left
+  // settled goes on when its 8 neighbours' first rounds say an edge is near:
+  // to adaptive_neighbour_samples when a neighbour is not settled (an edge
+  // that crosses a corner of a pixel by less than a stratum can escape its
+  // first samples but not its neighbours'), to 16 when a neighbour's mean
+  // differs from its own by more than the target (an edge between them may
+  // cross it unseen). The second pass reads only first-round states, so no
+  // pixel depends on the order of the tiles.
   const float target_variance = adaptive ? *o.target_error * *o.target_error : 0.f;
   std::vector<AdaptiveState> adaptive_states(adaptive ? size_t(width) * size_t(height) : 0);
   auto adaptive_round = [&](AdaptiveState& st, uint32_t pixel, float i, float j) {
-    for (const int end = std::min(o.max_spp, st.n + adaptive_round_samples); st.n < end; ++st.n) {
+    for (const int end = adaptive_round_end(st.n, o.max_spp); st.n < end; ++st.n) {
       const vec2 u = o.sampler == PixelSampler::random ? random_pixel_point(pixel, uint32_t(st.n))
                                                        : progressive_pixel_point(pixel, uint32_t(st.n));
       bool hit;
@@ -361,11 +364,18 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     const float i = float(x), j = float(height - 1 - y);
     AdaptiveState st = adaptive_states[pixel];  // its first round
     if (settled(st) && st.n < o.max_spp) {
-      bool neighbour_unsettled = false;
+      bool neighbour_unsettled = false, neighbour_differs = false;
       for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
-        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
-          neighbour_unsettled |= !settled(adaptive_states[size_t(ny) * size_t(width) + size_t(nx)]);
-      if (neighbour_unsettled) adaptive_round(st, pixel, i, j);
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+          const AdaptiveState& nb = adaptive_states[size_t(ny) * size_t(width) + size_t(nx)];
+          neighbour_unsettled |= !settled(nb);
+          const vec3 d = glm::abs(nb.mean - st.mean);
+          neighbour_differs |= std::max({d.x, d.y, d.z}) > *o.target_error;
+        }
+      const int upto = neighbour_unsettled ? std::min(o.max_spp, adaptive_neighbour_samples)
+                       : neighbour_differs ? adaptive_round_end(st.n, o.max_spp)
+                                           : st.n;
+      while (st.n < upto) adaptive_round(st, pixel, i, j);
     }
     while (st.n < o.max_spp && !settled(st)) adaptive_round(st, pixel, i, j);
     finish_samples(px, st.sum, st.hit_sum, float(st.n), st.covered);

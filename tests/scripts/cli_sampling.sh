@@ -27,9 +27,10 @@ course_run jitter -jitter
 course_run gauss -filter
 course_run adaptive -target-error 0.02 -max-spp 64
 grep -qE "[0-9]+ samples, [0-9.]+ per pixel, adaptive" adaptive.stats || fail adaptive "stats: $(cat adaptive.stats)"
-# The sphere's edge takes more than the first round, the background and its inside do not need it.
+# The sphere's edge takes more than the first round of 4, the background and its inside stop there
+# (13.3 per pixel measured; a first round of 16 would give more than 16).
 spp=$(sed -n 's/.*, \([0-9.]*\) per pixel, adaptive.*/\1/p' adaptive.stats)
-awk -v s="$spp" 'BEGIN { exit !(s > 16 && s < 64) }' || fail adaptive "mean samples per pixel $spp, expected between 16 and 64"
+awk -v s="$spp" 'BEGIN { exit !(s > 4 && s < 16) }' || fail adaptive "mean samples per pixel $spp, expected between 4 and 16"
 course_run random -sampler random -spp 4
 course_run stratified -spp 4
 # Every anti-aliased picture differs from the plain one and from each other.
