@@ -30,4 +30,27 @@ inline void add_root_group(Scene& s, std::vector<Node> children) {
   }
 }
 
+// A lit sphere of radius 1.5 at the origin seen from z = 10 (30 degrees):
+// about half the picture's width across, the corners `background`.
+inline Scene lit_sphere_scene(vec3 background) {
+  Scene s;
+  Camera c;
+  c.center = vec3(0.f, 0.f, 10.f);
+  c.direction = vec3(0.f, 0.f, -1.f);
+  c.fov_deg = 30.f;
+  s.cameras.push_back(c);
+  Light l;
+  l.kind = Light::Kind::directional;
+  l.direction = vec3(-0.3f, -0.5f, -1.f);
+  l.color = vec3(0.9f);
+  s.lights.push_back(l);
+  s.background.color = background;
+  Material m;
+  m.diffuse = vec3(0.8f, 0.3f, 0.2f);
+  s.materials = {m};
+  s.spheres = {Sphere{vec3(0.f), 1.5f}};
+  add_root_group(s, {shape_node(ShapeKind::sphere, 0, 0)});
+  return s;
+}
+
 }  // namespace rayform::test

@@ -21,28 +21,7 @@ namespace {
 
 const vec3 background_color(0.1f, 0.2f, 0.3f);
 
-// A lit sphere of radius 1.5 seen from z = 10 (30 degrees): about half the
-// picture's width across, the corners background.
-Scene sphere_scene() {
-  Scene s;
-  Camera c;
-  c.center = vec3(0.f, 0.f, 10.f);
-  c.direction = vec3(0.f, 0.f, -1.f);
-  c.fov_deg = 30.f;
-  s.cameras.push_back(c);
-  Light l;
-  l.kind = Light::Kind::directional;
-  l.direction = vec3(-0.3f, -0.5f, -1.f);
-  l.color = vec3(0.9f);
-  s.lights.push_back(l);
-  s.background.color = background_color;
-  Material m;
-  m.diffuse = vec3(0.8f, 0.3f, 0.2f);
-  s.materials = {m};
-  s.spheres = {Sphere{vec3(0.f), 1.5f}};
-  test::add_root_group(s, {test::shape_node(ShapeKind::sphere, 0, 0)});
-  return s;
-}
+Scene sphere_scene() { return test::lit_sphere_scene(background_color); }
 
 RenderResult render_with(const PreparedScene& p, int spp, AlphaMode alpha) {
   RenderOptions o;

@@ -43,27 +43,7 @@ Scene edge_scene(float edge_x, vec3 color = vec3(1.f)) {
   return s;
 }
 
-// A lit sphere of radius 1.5 seen from z = 10 (30 degrees), on a grey background.
-Scene sphere_scene() {
-  Scene s;
-  Camera c;
-  c.center = vec3(0.f, 0.f, 10.f);
-  c.direction = vec3(0.f, 0.f, -1.f);
-  c.fov_deg = 30.f;
-  s.cameras.push_back(c);
-  Light l;
-  l.kind = Light::Kind::directional;
-  l.direction = vec3(-0.3f, -0.5f, -1.f);
-  l.color = vec3(0.9f);
-  s.lights.push_back(l);
-  s.background.color = vec3(0.1f, 0.2f, 0.3f);
-  Material m;
-  m.diffuse = vec3(0.8f, 0.3f, 0.2f);
-  s.materials = {m};
-  s.spheres = {Sphere{vec3(0.f), 1.5f}};
-  test::add_root_group(s, {test::shape_node(ShapeKind::sphere, 0, 0)});
-  return s;
-}
+Scene sphere_scene() { return test::lit_sphere_scene(vec3(0.1f, 0.2f, 0.3f)); }
 
 RenderOptions options(int width, int height) {
   RenderOptions o;
