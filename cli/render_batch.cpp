@@ -34,7 +34,10 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
   std::vector<RenderJob> jobs;
   std::map<std::string, std::string> written;  // output -> the input writing it
   const int frames = std::max(1, turntable.frames);
-  for (const auto& [size, input] : sized) {
+  for (const auto& sized_input : sized) {
+    // A named reference, not a structured binding: clang 14 (the fuzz build's
+    // compiler) does not let the lambda below capture a binding.
+    const std::string& input = sized_input.second;
     for (int frame = 0; frame < frames; ++frame) {
       RenderJob j = job;
       j.input = input;
