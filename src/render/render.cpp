@@ -238,7 +238,7 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   const bool aovs = o.depth || o.normals || o.albedo;
   const bool alpha = o.alpha != AlphaMode::none, premultiplied = o.alpha == AlphaMode::premultiplied;
   const TileGrid layout = tile_grid(o);
-  const int ts = layout.tile_size, tiles_x = layout.tiles_x, tiles = layout.count();
+  const int tiles = layout.count();
   const bool grid = o.grid.on(), adaptive = !grid && o.target_error.has_value();
   // One ray through each pixel centre (the course's default): the fast paths below.
   const bool centre_only = !grid && !adaptive && o.spp <= 1 && o.sampler == PixelSampler::stratified;
@@ -350,8 +350,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     return st.n >= 2 && std::max({st.m2.x, st.m2.y, st.m2.z}) < target_variance * float(st.n - 1) * float(st.n);
   };
   auto adaptive_first_tile = [&](int tile) {
-    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    const TileRect r = layout.rect(tile);
+    const int x0 = r.x0, y0 = r.y0, x1 = r.x1, y1 = r.y1;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
@@ -395,8 +395,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
       out[1] = bg1;
       out[2] = bg2;
     };
-    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    const TileRect r = layout.rect(tile);
+    const int x0 = r.x0, y0 = r.y0, x1 = r.x1, y1 = r.y1;
     uint64_t tile_samples = 0;
     if (centre_only && sole_mesh >= 0) {
       // Rows of eight pixels; a shorter end of row repeats its last ray in the unused lanes.
@@ -506,8 +506,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     grid_wy = grid_axis_weights(height, o.grid.gaussian);
   }
   auto grid_sample_tile = [&](int tile) {
-    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    const TileRect r = layout.rect(tile);
+    const int x0 = r.x0, y0 = r.y0, x1 = r.x1, y1 = r.y1;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const float i = float(x), j = float(height - 1 - y);
@@ -529,8 +529,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
     tile_done();
   };
   auto grid_filter_tile = [&](int tile) {
-    int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-    int x1 = std::min(width, x0 + ts), y1 = std::min(height, y0 + ts);
+    const TileRect r = layout.rect(tile);
+    const int x0 = r.x0, y0 = r.y0, x1 = r.x1, y1 = r.y1;
     const int sample_w = grid_samples * width, sample_h = grid_samples * height;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
@@ -589,10 +589,8 @@ void render_tiles(const PreparedScene& p, const RenderOptions& o, RenderResult& 
   if (grid) {
     each_tile(grid_sample_tile);
     our_tiles(grid_filter_tile);
-  } else if (adaptive) {
-    each_tile(adaptive_first_tile);
-    our_tiles(render_tile);
   } else {
+    if (adaptive) each_tile(adaptive_first_tile);
     our_tiles(render_tile);
   }
   const uint64_t pixels = uint64_t(width) * uint64_t(height);
