@@ -1,5 +1,6 @@
-// ranks.h, work_counter.h and tile_gather.h for a rayform built without MPI
+// ranks.h, work_counter.h, tile_gather.h and rank_work_share.h for a rayform built without MPI
 // (RAYFORM_MPI off): always rank 0 of 1, every operation local.
+#include "rank_work_share.h"
 #include "ranks.h"
 #include "tile_gather.h"
 #include "work_counter.h"
@@ -32,5 +33,7 @@ WorkCounter::~WorkCounter() = default;
 long long WorkCounter::next() { return impl_->value++; }
 
 void gather_tiles(RenderResult&, const TileGrid&, const std::vector<int>&) {}
+
+WorkShare rank_work_share() { return {}; }
 
 }  // namespace rayform::cli
