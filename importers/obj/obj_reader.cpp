@@ -4,6 +4,7 @@
 #include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
 #include "rayform/importers/obj/obj_side_files.h"
+#include "rayform/importers/obj/obj_vertex_weld.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
 #include "rayform/scene/error.h"
@@ -11,6 +12,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -22,7 +24,6 @@
 #include <set>
 #include <sstream>
 #include <string_view>
-#include <unordered_map>
 
 namespace rayform {
 namespace fs = std::filesystem;
@@ -68,19 +69,6 @@ std::string trim(std::string s) {
   size_t e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
 }
-
-struct VertexKey {
-  int v, t, n;
-  bool operator==(const VertexKey& o) const { return v == o.v && t == o.t && n == o.n; }
-};
-struct VertexKeyHash {
-  size_t operator()(const VertexKey& k) const {
-    uint64_t h = uint64_t(uint32_t(k.v)) * 0x9E3779B97F4A7C15ull;
-    h ^= (uint64_t(uint32_t(k.t)) + 0x7F4A7C15ull + (h << 6) + (h >> 2));
-    h ^= (uint64_t(uint32_t(k.n)) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2));
-    return size_t(h);
-  }
-};
 
 class ObjSceneBuilder {
  public:
@@ -442,6 +430,7 @@ class ObjSceneBuilder {
       constexpr size_t block = size_t(1) << 16;
       std::vector<vec3> weighted(3 * std::min(faces, block));
       std::vector<uint8_t> contributes(weighted.size());
+      const int ranges = tbb::this_task_arena::max_concurrency();
       for (size_t first = 0; first < faces; first += block) {
         const size_t last = std::min(faces, first + block);
         tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1024), [&](const tbb::blocked_range<size_t>& r) {
@@ -449,83 +438,82 @@ class ObjSceneBuilder {
             angle_weighted_normals(idx, face_start[f], s.mesh.num_face_vertices[f] == 3, a, &weighted[3 * (f - first)],
                                    &contributes[3 * (f - first)]);
         });
-        for (size_t f = first; f < last; ++f)
-          for (int k = 0; k < 3; ++k)
-            if (contributes[3 * (f - first) + k])
-              smooth[idx[face_start[f] + k].vertex_index] += weighted[3 * (f - first) + k];
+        // Summed by position ranges at once: each range's sums in face order.
+        tbb::parallel_for(0, ranges, [&](int range) {
+          const size_t lo = position_count * size_t(range) / size_t(ranges),
+                       hi = position_count * size_t(range + 1) / size_t(ranges);
+          for (size_t f = first; f < last; ++f)
+            for (int k = 0; k < 3; ++k) {
+              const size_t v = size_t(idx[face_start[f] + k].vertex_index);
+              if (v >= lo && v < hi && contributes[3 * (f - first) + k]) smooth[v] += weighted[3 * (f - first) + k];
+            }
+        });
       }
     }
 
     Mesh mesh;
     mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
     mesh.source_path = path_;
-    // A corner's vertex is found by its key (position, uv, normal). The first
-    // key met at a position is kept beside the position (most positions have
-    // one key: a uv seam or a crease gives a few more), the others in a map.
-    // Vertices are made in the order their keys are first met either way.
-    constexpr uint32_t unseen = ~0u;
-    struct FirstKey {
-      uint32_t vertex = unseen;
-      int t = -1, n = -1;
+    // The triangles: after tinyobjloader's triangulation every face is one
+    // (faces of another size are skipped, defensively).
+    const bool all_triangles = std::all_of(s.mesh.num_face_vertices.begin(), s.mesh.num_face_vertices.end(),
+                                           [](unsigned char n) { return n == 3; });
+    std::vector<uint32_t> triangle_faces;  // the face of each triangle, unless all faces are triangles
+    if (!all_triangles)
+      for (size_t f = 0; f < faces; ++f)
+        if (s.mesh.num_face_vertices[f] == 3) triangle_faces.push_back(uint32_t(f));
+    const size_t triangles = all_triangles ? faces : triangle_faces.size();
+    if (triangles == 0) return invalid;
+    auto face_of = [&](size_t t) { return all_triangles ? t : size_t(triangle_faces[t]); };
+    auto corner = [&](size_t c) -> const tinyobj::index_t& { return idx[face_start[face_of(c / 3)] + c % 3]; };
+    // A corner's vertex is found by its key (position, uv, normal); a corner
+    // without a normal: smooth ones are shared per position (key -1),
+    // faceted ones belong to their face alone (key -2 - face).
+    auto key_of = [&](size_t c) {
+      const tinyobj::index_t& ix = corner(c);
+      const int n = corner_normal(ix);
+      const int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(face_of(c / 3)) : -1));
+      return obj::CornerKey{ix.vertex_index, corner_uv(ix), nkey};
     };
-    std::vector<FirstKey> first_key(position_count);
-    std::unordered_map<VertexKey, uint32_t, VertexKeyHash> other_keys;
-    std::vector<int> face_mats;
-    face_mats.reserve(faces);
-    mesh.indices.reserve(faces * 3);
-    mesh.positions.reserve(std::min(position_count, faces * 3));
-    for (size_t f = 0; f < faces; ++f) {
-      if (s.mesh.num_face_vertices[f] != 3) continue;
-      vec3 face_normal(0.f);
-      if (generate && options_.flat) {
-        vec3 p0 = pos(idx[face_start[f]].vertex_index), p1 = pos(idx[face_start[f] + 1].vertex_index),
-             p2 = pos(idx[face_start[f] + 2].vertex_index);
-        vec3 n = glm::cross(p1 - p0, p2 - p0);
-        float len = glm::length(n);
-        if (len > 0.f && std::isfinite(len)) face_normal = n / len;
-      }
-      for (int k = 0; k < 3; ++k) {
-        const tinyobj::index_t& ix = idx[face_start[f] + k];
-        int t = corner_uv(ix), n = corner_normal(ix);
-        // A corner without a normal: smooth ones are shared per position
-        // (key -1); faceted ones belong to their face alone.
-        int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(f) : -1));
-        const uint32_t next = uint32_t(mesh.positions.size());
-        uint32_t vertex;
-        bool inserted;
-        FirstKey& fk = first_key[size_t(ix.vertex_index)];
-        if (fk.vertex == unseen) {
-          fk = FirstKey{next, t, nkey};
-          inserted = true;
-          vertex = next;
-        } else if (fk.t == t && fk.n == nkey) {
-          inserted = false;
-          vertex = fk.vertex;
-        } else {
-          auto [it, added] = other_keys.try_emplace(VertexKey{ix.vertex_index, t, nkey}, next);
-          inserted = added;
-          vertex = it->second;
+    obj::WeldedVertices welded = obj::weld_vertices(position_count, 3 * triangles, key_of);
+    const size_t vertices = welded.first_corner.size();
+    mesh.positions.resize(vertices);
+    if (any_uv) mesh.uvs.resize(vertices);
+    if (per_vertex_normals) mesh.normals.resize(vertices);
+    if (has_colors_) mesh.colors.resize(vertices);
+    auto face_normal = [&](size_t f) {
+      const size_t b = face_start[f];
+      vec3 p0 = pos(idx[b].vertex_index), p1 = pos(idx[b + 1].vertex_index), p2 = pos(idx[b + 2].vertex_index);
+      vec3 n = glm::cross(p1 - p0, p2 - p0);
+      float len = glm::length(n);
+      return len > 0.f && std::isfinite(len) ? n / len : vec3(0.f);
+    };
+    // Each vertex from the first corner with its key.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t v = r.begin(); v < r.end(); ++v) {
+        const size_t c = welded.first_corner[v];
+        const tinyobj::index_t& ix = corner(c);
+        const int t = corner_uv(ix), n = corner_normal(ix);
+        const size_t p = size_t(ix.vertex_index);
+        mesh.positions[v] = pos(ix.vertex_index);
+        if (any_uv) mesh.uvs[v] = t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f);
+        if (per_vertex_normals) {
+          vec3 nv(0.f);
+          if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
+          else if (options_.flat) nv = generate ? face_normal(face_of(c / 3)) : vec3(0.f);
+          else if (!smooth.empty()) nv = smooth[p];
+          float len = glm::length(nv);
+          mesh.normals[v] = len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f);
         }
-        if (inserted) {
-          mesh.positions.push_back(pos(ix.vertex_index));
-          if (any_uv) mesh.uvs.push_back(t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f));
-          if (per_vertex_normals) {
-            vec3 nv(0.f);
-            if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
-            else if (options_.flat) nv = face_normal;
-            else if (!smooth.empty()) nv = smooth[size_t(ix.vertex_index)];
-            float len = glm::length(nv);
-            mesh.normals.push_back(len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f));
-          }
-          if (has_colors_) {
-            size_t v = size_t(ix.vertex_index);
-            mesh.colors.push_back(vec3(a.colors[3 * v], a.colors[3 * v + 1], a.colors[3 * v + 2]));
-          }
-        }
-        mesh.indices.push_back(vertex);
+        if (has_colors_) mesh.colors[v] = vec3(a.colors[3 * p], a.colors[3 * p + 1], a.colors[3 * p + 2]);
       }
+    });
+    mesh.indices = std::move(welded.corner_vertex);
+    std::vector<int> face_mats(triangles);
+    for (size_t t = 0; t < triangles; ++t) {
+      const size_t f = face_of(t);
       int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
-      face_mats.push_back(mid >= 0 && size_t(mid) < lib_.materials.size() ? mid : default_material());
+      face_mats[t] = mid >= 0 && size_t(mid) < lib_.materials.size() ? mid : default_material();
     }
     if (mesh.indices.empty()) return invalid;
     bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
