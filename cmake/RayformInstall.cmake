@@ -24,9 +24,9 @@ if(TARGET rayform)
 endif()
 
 # Headers: every header of the libraries, under the path the sources include
-# it by, except those private to one source file: the readers' internals that
-# include tiny_gltf.h or tiny_obj_loader.h (private dependencies a consumer
-# does not have), and the traversal kernels that mesh_accel_traverse.cpp
+# it by, except those private to one source file: the readers' internals
+# (some include tiny_gltf.h, tiny_obj_loader.h or oneTBB: private dependencies
+# a consumer does not have), and the traversal kernels that mesh_accel_traverse.cpp
 # includes once per instruction set. No installed header includes them
 # (tests/package compiles every installed header with nothing but
 # rayform::core's usage requirements).
@@ -34,7 +34,8 @@ set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_kernel.h src/accel/mesh_accel_p
                             importers/gltf/gltf_accessors.h importers/gltf/gltf_builder.h
                             importers/gltf/gltf_file_access.h importers/gltf/gltf_scene_builder.h
                             importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h
-                            importers/obj/obj_polygon_split.h)
+                            importers/obj/obj_polygon_split.h importers/obj/obj_vertex_weld.h
+                            importers/file_bytes.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})
   string(REPLACE "." "\\." _h "${_h}")

@@ -1,5 +1,6 @@
 #include "rayform/importers/obj/obj_reader.h"
 
+#include "rayform/importers/file_bytes.h"
 #include "rayform/importers/obj/mtl_library.h"
 #include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
@@ -12,6 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 #include <tiny_obj_loader.h>
 
@@ -45,24 +47,6 @@ constexpr float default_grey = 0.8f;
 // Smaller files are parsed in one piece: threads do not pay there.
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
 
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open OBJ file");
-  std::error_code ec;
-  const uintmax_t size = fs::is_regular_file(path, ec) ? fs::file_size(path, ec) : 0;
-  if (!ec && size > 0) {  // one read into a buffer of the file's size
-    std::string text(size_t(size), '\0');
-    in.read(text.data(), std::streamsize(size));
-    text.resize(size_t(in.gcount()));
-    if (in.bad()) throw Error(path + ": cannot read OBJ file");
-    return text;
-  }
-  std::ostringstream ss;  // not a regular file: read to the end
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read OBJ file");
-  return ss.str();
-}
-
 std::string trim(std::string s) {
   size_t b = s.find_first_not_of(" \t\r\n");
   if (b == std::string::npos) return {};
@@ -76,7 +60,8 @@ class ObjSceneBuilder {
       : path_(path), options_(options), warnings_(warnings), dir_(fs::path(path).parent_path()) {}
 
   Scene build() {
-    text_ = read_text_file(path_);
+    file_ = FileBytes(path_, "OBJ file");
+    text_ = file_.view();
     load_material_libraries();
 
     ObjParse parsed = parse();
@@ -87,20 +72,47 @@ class ObjSceneBuilder {
     const size_t nv = attrib.vertices.size() / 3;
     const size_t nt = attrib.texcoords.size() / 2;
     const size_t nn = attrib.normals.size() / 3;
-    for (size_t i = 0; i < nv; ++i) {
-      vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-      if (!is_finite(p)) throw Error(path_ + ": vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
-    }
+    // The first vertex with a non-finite coordinate, if any (blocks at once).
+    const size_t bad_vertex = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, nv, 1 << 14), nv,
+        [&](const tbb::blocked_range<size_t>& r, size_t first) {
+          for (size_t i = r.begin(); i < r.end() && i < first; ++i)
+            if (!std::isfinite(attrib.vertices[3 * i]) || !std::isfinite(attrib.vertices[3 * i + 1]) ||
+                !std::isfinite(attrib.vertices[3 * i + 2]))
+              return i;
+          return first;
+        },
+        [](size_t a, size_t b) { return std::min(a, b); });
+    if (bad_vertex < nv)
+      throw Error(path_ + ": vertex " + std::to_string(bad_vertex + 1) + " has a non-finite coordinate");
 
     // Check every corner; uv and normal indices that name nothing drop that
     // attribute for the whole file (with a warning), as other converters do.
-    bool uvs_ok = true, normals_ok = true;
-    for (const tinyobj::shape_t& s : shapes)
-      for (const tinyobj::index_t& ix : s.mesh.indices) {
-        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= nv) fail_bad_index(0, nv);
-        if (ix.texcoord_index < -1 || (ix.texcoord_index >= 0 && size_t(ix.texcoord_index) >= nt)) uvs_ok = false;
-        if (ix.normal_index < -1 || (ix.normal_index >= 0 && size_t(ix.normal_index) >= nn)) normals_ok = false;
-      }
+    struct CornerCheck {
+      bool positions_ok = true, uvs_ok = true, normals_ok = true;
+    };
+    CornerCheck check;
+    for (const tinyobj::shape_t& s : shapes) {
+      const std::vector<tinyobj::index_t>& corners = s.mesh.indices;
+      const CornerCheck c = tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(0, corners.size(), 1 << 15), CornerCheck{},
+          [&](const tbb::blocked_range<size_t>& r, CornerCheck acc) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+              const tinyobj::index_t& ix = corners[i];
+              acc.positions_ok &= ix.vertex_index >= 0 && size_t(ix.vertex_index) < nv;
+              acc.uvs_ok &= ix.texcoord_index >= -1 && (ix.texcoord_index < 0 || size_t(ix.texcoord_index) < nt);
+              acc.normals_ok &= ix.normal_index >= -1 && (ix.normal_index < 0 || size_t(ix.normal_index) < nn);
+            }
+            return acc;
+          },
+          [](CornerCheck a, const CornerCheck& b) {
+            return CornerCheck{a.positions_ok && b.positions_ok, a.uvs_ok && b.uvs_ok, a.normals_ok && b.normals_ok};
+          });
+      if (!c.positions_ok) fail_bad_index(0, nv);
+      check.uvs_ok &= c.uvs_ok;
+      check.normals_ok &= c.normals_ok;
+    }
+    const bool uvs_ok = check.uvs_ok, normals_ok = check.normals_ok;
     if (!uvs_ok) warn_bad_index(1, nt, "texture coordinates");
     if (!normals_ok) warn_bad_index(2, nn, "normals");
     // Written normals of zero (or non-finite) length count as missing.
@@ -465,7 +477,10 @@ class ObjSceneBuilder {
     const size_t triangles = all_triangles ? faces : triangle_faces.size();
     if (triangles == 0) return invalid;
     auto face_of = [&](size_t t) { return all_triangles ? t : size_t(triangle_faces[t]); };
-    auto corner = [&](size_t c) -> const tinyobj::index_t& { return idx[face_start[face_of(c / 3)] + c % 3]; };
+    // Corner c is idx[c] when all faces are triangles (face_start[f] = 3 f).
+    auto corner = [&](size_t c) -> const tinyobj::index_t& {
+      return all_triangles ? idx[c] : idx[face_start[triangle_faces[c / 3]] + c % 3];
+    };
     // A corner's vertex is found by its key (position, uv, normal); a corner
     // without a normal: smooth ones are shared per position (key -1),
     // faceted ones belong to their face alone (key -2 - face).
@@ -545,7 +560,7 @@ class ObjSceneBuilder {
 
   [[noreturn]] void fail_bad_index(int kind, size_t count) {
     BadIndex b;
-    if (find_bad_index(text_, kind, &b))
+    if (find_bad_index(std::string(text_), kind, &b))
       throw Error(path_ + ":" + std::to_string(b.line) + ": face refers to vertex " + std::to_string(b.index) +
                   " but only " + std::to_string(b.count) + " vertices are declared before it");
     throw Error(path_ + ": a face refers to a vertex that does not exist (the file has " + std::to_string(count) +
@@ -555,7 +570,7 @@ class ObjSceneBuilder {
   void warn_bad_index(int kind, size_t count, const char* what) {
     BadIndex b;
     std::string item = kind == 1 ? "texture coordinate " : "normal ";
-    if (find_bad_index(text_, kind, &b))
+    if (find_bad_index(std::string(text_), kind, &b))
       warn(path_ + ":" + std::to_string(b.line) + ": face refers to " + item + std::to_string(b.index) + " but only " +
            std::to_string(b.count) + " are declared before it; " + what + " of this file are ignored");
     else
@@ -587,7 +602,8 @@ class ObjSceneBuilder {
   std::vector<std::string>* warnings_;
   std::set<std::string> seen_warnings_;
   fs::path dir_;
-  std::string text_;
+  FileBytes file_;
+  std::string_view text_;  // file_'s bytes
   MtlLibrary lib_;
   Scene scene_;
   std::map<std::string, int> texture_cache_;

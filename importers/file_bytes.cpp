@@ -1,0 +1,55 @@
+#include "rayform/importers/file_bytes.h"
+
+#include "rayform/scene/error.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <utility>
+
+namespace rayform {
+
+FileBytes::FileBytes(const std::string& path, const std::string& what) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(path + ": cannot open " + what);
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    void* p = ::mmap(nullptr, size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+    if (p != MAP_FAILED) {
+      ::close(fd);
+      mapped_ = static_cast<const char*>(p);
+      size_ = size_t(st.st_size);
+      return;
+    }
+  }
+  // Not a regular file (or not mappable): read to the end.
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      ::close(fd);
+      throw Error(path + ": cannot read " + what);
+    }
+    read_.append(buffer, size_t(n));
+  }
+  ::close(fd);
+}
+
+FileBytes& FileBytes::operator=(FileBytes&& o) noexcept {
+  if (this != &o) {
+    if (mapped_) ::munmap(const_cast<char*>(mapped_), size_);
+    mapped_ = std::exchange(o.mapped_, nullptr);
+    size_ = std::exchange(o.size_, 0);
+    read_ = std::move(o.read_);
+  }
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+  if (mapped_) ::munmap(const_cast<char*>(mapped_), size_);
+}
+
+}  // namespace rayform
