@@ -268,6 +268,17 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   o = ObjParse{};
   bool all_colors = true;
   std::vector<size_t> first_vertex(n + 1, 0);  // the first vertex of each chunk (0-based), then the count
+  {
+    size_t vertices = 0, normals = 0, texcoords = 0;
+    for (const ChunkResult& r : results) {
+      vertices += r.attrib.vertices.size();
+      normals += r.attrib.normals.size();
+      texcoords += r.attrib.texcoords.size();
+    }
+    o.attrib.vertices.reserve(vertices);
+    o.attrib.normals.reserve(normals);
+    o.attrib.texcoords.reserve(texcoords);
+  }
   for (size_t k = 0; k < n; ++k) {
     const ChunkResult& r = results[k];
     append(o.attrib.vertices, r.attrib.vertices);
@@ -282,10 +293,15 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   // LoadObj warns of a face index past the last vertex (the reader makes that an error).
   const size_t vertex_count = first_vertex[n];
   std::vector<int> large_polygon_vertices;  // of polygons of five or more corners
+  std::vector<uint8_t> indices_ok(n, 1);
+  tbb::parallel_for(size_t(0), n, [&](size_t k) {
+    for (const tinyobj::shape_t& s : results[k].shapes)
+      for (const tinyobj::index_t& ix : s.mesh.indices)
+        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) indices_ok[k] = 0;
+  });
+  if (std::find(indices_ok.begin(), indices_ok.end(), 0) != indices_ok.end()) return false;
   for (size_t k = 0; k < n; ++k) {
     for (const tinyobj::shape_t& s : results[k].shapes) {
-      for (const tinyobj::index_t& ix : s.mesh.indices)
-        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) return false;
       if (scans[k].polygon_vertices_before.empty()) continue;
       size_t at = 0;
       for (const unsigned char corners : s.mesh.num_face_vertices) {
@@ -334,17 +350,33 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
       corners += m.indices.size();
     }
     o.shapes.push_back(std::move(results[pieces[first].chunk].shapes[pieces[first].shape]));
-    tinyobj::mesh_t& to = o.shapes.back().mesh;
-    to.indices.reserve(corners);
-    to.num_face_vertices.reserve(faces);
-    to.material_ids.reserve(faces);
-    to.smoothing_group_ids.reserve(faces);
-    for (size_t i = first + 1; i < last; ++i) {
-      const tinyobj::mesh_t& piece = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
-      append(to.indices, piece.indices);
-      append(to.num_face_vertices, piece.num_face_vertices);
-      append(to.material_ids, piece.material_ids);
-      append(to.smoothing_group_ids, piece.smoothing_group_ids);
+    if (last > first + 1) {
+      // The section's arrays at their full size, every piece copied in at once.
+      tinyobj::mesh_t& to = o.shapes.back().mesh;
+      tinyobj::mesh_t head;  // the first piece's arrays
+      head.indices.swap(to.indices);
+      head.num_face_vertices.swap(to.num_face_vertices);
+      head.material_ids.swap(to.material_ids);
+      head.smoothing_group_ids.swap(to.smoothing_group_ids);
+      std::vector<const tinyobj::mesh_t*> parts{&head};
+      std::vector<size_t> part_corner{0}, part_face{0};  // where each part goes
+      for (size_t i = first + 1; i < last; ++i) {
+        part_corner.push_back(part_corner.back() + parts.back()->indices.size());
+        part_face.push_back(part_face.back() + parts.back()->num_face_vertices.size());
+        parts.push_back(&results[pieces[i].chunk].shapes[pieces[i].shape].mesh);
+      }
+      to.indices.resize(corners);
+      to.num_face_vertices.resize(faces);
+      to.material_ids.resize(faces);
+      to.smoothing_group_ids.resize(faces);
+      tbb::parallel_for(size_t(0), parts.size(), [&](size_t p) {
+        const tinyobj::mesh_t& m = *parts[p];
+        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(part_corner[p]));
+        const ptrdiff_t face = ptrdiff_t(part_face[p]);
+        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(), to.num_face_vertices.begin() + face);
+        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + face);
+        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(), to.smoothing_group_ids.begin() + face);
+      });
     }
     first = last;
   }
