@@ -1,0 +1,128 @@
+#include "rayform/importers/obj/obj_parse_bytes.h"
+
+#include "rayform/scene/error.h"
+
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+namespace rayform::obj {
+namespace {
+
+class Writer {
+ public:
+  explicit Writer(std::vector<std::byte>* out) : out_(out) {}
+
+  void raw(const void* data, size_t n) {
+    const size_t at = out_->size();
+    out_->resize(at + n);
+    if (n) std::memcpy(out_->data() + at, data, n);
+  }
+  void number(uint64_t v) { raw(&v, sizeof v); }
+  void text(const std::string& s) {
+    number(s.size());
+    raw(s.data(), s.size());
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    number(v.size());
+    raw(v.data(), v.size() * sizeof(T));
+  }
+
+ private:
+  std::vector<std::byte>* out_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<std::byte>& in) : in_(in) {}
+
+  bool done() const { return at_ == in_.size(); }
+  void raw(void* data, size_t n) {
+    if (n > in_.size() - at_) throw Error("shared OBJ parse: the bytes of a part end early (a bug)");
+    if (n) std::memcpy(data, in_.data() + at_, n);
+    at_ += n;
+  }
+  uint64_t number() {
+    uint64_t v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  // A count of items of `size` bytes that the rest of the bytes can hold.
+  size_t count(size_t size) {
+    const uint64_t n = number();
+    if (n > (in_.size() - at_) / size) throw Error("shared OBJ parse: an array runs past the bytes of a part (a bug)");
+    return size_t(n);
+  }
+  std::string text() {
+    std::string s(count(1), '\0');
+    raw(s.data(), s.size());
+    return s;
+  }
+  template <class T>
+  void array(std::vector<T>* v) {
+    v->resize(count(sizeof(T)));
+    raw(v->data(), v->size() * sizeof(T));
+  }
+
+ private:
+  const std::vector<std::byte>& in_;
+  size_t at_ = 0;
+};
+
+}  // namespace
+
+void append_chunk_bytes(size_t chunk, const ChunkParse& parse, std::vector<std::byte>* bytes) {
+  Writer w(bytes);
+  w.number(chunk);
+  w.number(parse.ok ? 1 : 0);
+  w.text(parse.error);
+  if (!parse.ok) return;
+  w.text(parse.warn);
+  w.array(parse.attrib.vertices);
+  w.array(parse.attrib.normals);
+  w.array(parse.attrib.texcoords);
+  w.array(parse.attrib.colors);
+  w.number(parse.shapes.size());
+  for (const tinyobj::shape_t& s : parse.shapes) {
+    w.text(s.name);
+    w.array(s.mesh.indices);
+    w.array(s.mesh.num_face_vertices);
+    w.array(s.mesh.material_ids);
+    w.array(s.mesh.smoothing_group_ids);
+  }
+}
+
+std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::vector<ChunkParse>* chunks) {
+  std::vector<size_t> read;
+  Reader r(bytes);
+  while (!r.done()) {
+    const uint64_t chunk = r.number();
+    if (chunk >= chunks->size())
+      throw Error("shared OBJ parse: chunk " + std::to_string(chunk) + " of " + std::to_string(chunks->size()) +
+                  " (a bug)");
+    ChunkParse& p = (*chunks)[chunk];
+    p = ChunkParse{};
+    p.ok = r.number() != 0;
+    p.error = r.text();
+    read.push_back(size_t(chunk));
+    if (!p.ok) continue;
+    p.warn = r.text();
+    r.array(&p.attrib.vertices);
+    r.array(&p.attrib.normals);
+    r.array(&p.attrib.texcoords);
+    r.array(&p.attrib.colors);
+    p.shapes.resize(r.count(5 * sizeof(uint64_t)));  // a shape takes at least its five sizes
+    for (tinyobj::shape_t& s : p.shapes) {
+      s.name = r.text();
+      r.array(&s.mesh.indices);
+      r.array(&s.mesh.num_face_vertices);
+      r.array(&s.mesh.material_ids);
+      r.array(&s.mesh.smoothing_group_ids);
+    }
+  }
+  return read;
+}
+
+}  // namespace rayform::obj
