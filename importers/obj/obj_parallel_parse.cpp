@@ -238,12 +238,12 @@ void append(std::vector<T>& to, const std::vector<T>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
-// The part of a shared parse that chunk k falls to: the one whose
-// text.size() / parts bytes hold the chunk's middle byte.
-int chunk_part(const std::vector<size_t>& starts, size_t k, int parts) {
-  const uint64_t middle = starts[k] + (starts[k + 1] - starts[k]) / 2;
-  return int(middle * uint64_t(parts) / std::max<uint64_t>(starts.back(), 1));
-}
+// The part of a shared parse that chunk k falls to: the chunks are dealt
+// in turn, so that each part gets as many bytes (the chunks are of about
+// one size) and as much of each kind of line (a file of vertices then
+// faces would give the faces, which take longer to parse per byte, to the
+// last parts if each took a run of the text).
+int chunk_part(size_t k, int parts) { return int(k % size_t(parts)); }
 
 std::string what_was_thrown() {
   try {
@@ -259,13 +259,13 @@ std::string what_was_thrown() {
 // part every chunk's result. Nothing is thrown between the first chunk and
 // the exchange (a part that threw there would leave the others waiting):
 // what a chunk throws travels as its error, and every part then throws it.
-void parse_shared(const WorkShare& share, const std::vector<size_t>& starts,
-                  const std::function<void(size_t)>& parse_chunk, std::vector<ChunkResult>* results) {
+void parse_shared(const WorkShare& share, const std::function<void(size_t)>& parse_chunk,
+                  std::vector<ChunkResult>* results) {
   std::vector<ChunkResult>& r = *results;
   const size_t n = r.size();
   std::vector<size_t> mine;
   for (size_t k = 0; k < n; ++k)
-    if (chunk_part(starts, k, share.parts) == share.part) mine.push_back(k);
+    if (chunk_part(k, share.parts) == share.part) mine.push_back(k);
   std::vector<std::byte> bytes;
   try {
     tbb::parallel_for(size_t(0), mine.size(), [&](size_t i) {
@@ -276,6 +276,9 @@ void parse_shared(const WorkShare& share, const std::vector<size_t>& starts,
         r[mine[i]].error = what_was_thrown();
       }
     });
+    size_t size = 0;
+    for (size_t k : mine) size += obj::chunk_bytes_size(r[k]);
+    bytes.reserve(size);
     for (size_t k : mine) {
       obj::append_chunk_bytes(k, r[k], &bytes);
       r[k] = ChunkResult{};
@@ -293,7 +296,7 @@ void parse_shared(const WorkShare& share, const std::vector<size_t>& starts,
   std::vector<uint8_t> received(n, 0);
   for (size_t p = 0; p < all.size(); ++p) {
     for (size_t k : obj::read_chunk_bytes(all[p], &r))
-      if (chunk_part(starts, k, share.parts) != int(p) || received[k]++)
+      if (chunk_part(k, share.parts) != int(p) || received[k]++)
         throw Error("shared OBJ parse: part " + std::to_string(p) + " sent chunk " + std::to_string(k) +
                     ", not its own (a bug)");
     std::vector<std::byte>().swap(all[p]);
@@ -301,7 +304,7 @@ void parse_shared(const WorkShare& share, const std::vector<size_t>& starts,
   for (size_t k = 0; k < n; ++k) {
     if (!received[k]) throw Error("shared OBJ parse: no part sent chunk " + std::to_string(k) + " (a bug)");
     if (!r[k].error.empty())
-      throw Error("parsing OBJ text in chunks: part " + std::to_string(chunk_part(starts, k, share.parts)) +
+      throw Error("parsing OBJ text in chunks: part " + std::to_string(chunk_part(k, share.parts)) +
                   " failed: " + r[k].error);
   }
 }
@@ -330,7 +333,7 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
                             /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
            keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
   };
-  if (share && share->shared()) parse_shared(*share, starts, parse_chunk, &results);
+  if (share && share->shared()) parse_shared(*share, parse_chunk, &results);
   else tbb::parallel_for(size_t(0), n, parse_chunk);
   if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
 

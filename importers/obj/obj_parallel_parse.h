@@ -54,8 +54,8 @@ using MaterialReaderFactory = std::function<std::unique_ptr<tinyobj::MaterialRea
 //
 // With a `share` of several parts (rayform/scene/work_share.h), every part
 // calls this with the same text, readers and chunk size; each scans the
-// whole text but parses only the chunks that fall to it (a contiguous run
-// of about text.size() / parts bytes), and one exchange gives every part
+// whole text but parses only the chunks that fall to it (every parts-th
+// one), and one exchange gives every part
 // every chunk's result (obj_parse_bytes.h), from which each joins the same
 // ObjParse as without a share, or returns false alike. The exchange is made
 // unless the scan alone falls back (before it, every part does the same).

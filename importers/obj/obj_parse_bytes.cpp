@@ -9,29 +9,64 @@
 namespace rayform::obj {
 namespace {
 
-class Writer {
- public:
-  explicit Writer(std::vector<std::byte>* out) : out_(out) {}
-
-  void raw(const void* data, size_t n) {
-    const size_t at = out_->size();
-    out_->resize(at + n);
-    if (n) std::memcpy(out_->data() + at, data, n);
+// Puts the fields of a chunk, in order, to a sink: one that counts their
+// bytes, then one that copies them.
+template <class Sink>
+void put_chunk(Sink& w, size_t chunk, const ChunkParse& parse) {
+  w.number(chunk);
+  w.number(parse.ok ? 1 : 0);
+  w.text(parse.error);
+  if (!parse.ok) return;
+  w.text(parse.warn);
+  w.array(parse.attrib.vertices);
+  w.array(parse.attrib.normals);
+  w.array(parse.attrib.texcoords);
+  w.array(parse.attrib.colors);
+  w.number(parse.shapes.size());
+  for (const tinyobj::shape_t& s : parse.shapes) {
+    w.text(s.name);
+    w.array(s.mesh.indices);
+    w.array(s.mesh.num_face_vertices);
+    w.array(s.mesh.material_ids);
+    w.array(s.mesh.smoothing_group_ids);
   }
-  void number(uint64_t v) { raw(&v, sizeof v); }
+}
+
+template <class Derived>
+class Sink {
+ public:
+  void number(uint64_t v) { self().raw(&v, sizeof v); }
   void text(const std::string& s) {
     number(s.size());
-    raw(s.data(), s.size());
+    self().raw(s.data(), s.size());
   }
   template <class T>
   void array(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     number(v.size());
-    raw(v.data(), v.size() * sizeof(T));
+    self().raw(v.data(), v.size() * sizeof(T));
   }
 
  private:
-  std::vector<std::byte>* out_;
+  Derived& self() { return static_cast<Derived&>(*this); }
+};
+
+class Counter : public Sink<Counter> {
+ public:
+  void raw(const void*, size_t n) { bytes += n; }
+  size_t bytes = 0;
+};
+
+class Writer : public Sink<Writer> {
+ public:
+  explicit Writer(std::byte* to) : to_(to) {}
+  void raw(const void* data, size_t n) {
+    if (n) std::memcpy(to_, data, n);
+    to_ += n;
+  }
+
+ private:
+  std::byte* to_;
 };
 
 class Reader {
@@ -73,25 +108,17 @@ class Reader {
 
 }  // namespace
 
+size_t chunk_bytes_size(const ChunkParse& parse) {
+  Counter c;
+  put_chunk(c, 0, parse);
+  return c.bytes;
+}
+
 void append_chunk_bytes(size_t chunk, const ChunkParse& parse, std::vector<std::byte>* bytes) {
-  Writer w(bytes);
-  w.number(chunk);
-  w.number(parse.ok ? 1 : 0);
-  w.text(parse.error);
-  if (!parse.ok) return;
-  w.text(parse.warn);
-  w.array(parse.attrib.vertices);
-  w.array(parse.attrib.normals);
-  w.array(parse.attrib.texcoords);
-  w.array(parse.attrib.colors);
-  w.number(parse.shapes.size());
-  for (const tinyobj::shape_t& s : parse.shapes) {
-    w.text(s.name);
-    w.array(s.mesh.indices);
-    w.array(s.mesh.num_face_vertices);
-    w.array(s.mesh.material_ids);
-    w.array(s.mesh.smoothing_group_ids);
-  }
+  const size_t at = bytes->size();
+  bytes->resize(at + chunk_bytes_size(parse));
+  Writer w(bytes->data() + at);
+  put_chunk(w, chunk, parse);
 }
 
 std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::vector<ChunkParse>* chunks) {

@@ -24,6 +24,9 @@ struct ChunkParse {
   std::string warn;
 };
 
+// How many bytes append_chunk_bytes adds for `parse`.
+size_t chunk_bytes_size(const ChunkParse& parse);
+
 // Appends chunk number `chunk` to `bytes` (its arrays only when it is ok).
 void append_chunk_bytes(size_t chunk, const ChunkParse& parse, std::vector<std::byte>* bytes);
 

@@ -140,7 +140,7 @@ TEST(ObjSharedParse, FallsBackOnEveryPart) {
   expect_shared_same(head + "usemtl red\nf 1 2 5 10\nv 9 9 9\nusemtl green\nf 1 2 3\n", {16}, false);
 }
 
-// A long text whose last face is bad: only the last part's chunks hold it.
+// A long text whose last face is bad: only one part's chunks hold it.
 TEST(ObjSharedParse, BadFaceInOnePartsChunks) {
   const std::string grid = test::grid_file(12, false);
   // An index past the last vertex: found when the chunks are joined.
