@@ -2,6 +2,7 @@
 
 #include "rayform/scene/error.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
@@ -25,10 +26,27 @@ void put_chunk(Sink& w, size_t chunk, const ChunkParse& parse) {
   w.number(parse.shapes.size());
   for (const tinyobj::shape_t& s : parse.shapes) {
     w.text(s.name);
-    w.array(s.mesh.indices);
-    w.array(s.mesh.num_face_vertices);
-    w.array(s.mesh.material_ids);
-    w.array(s.mesh.smoothing_group_ids);
+    w.corners(s.mesh.indices);
+    w.runs(s.mesh.num_face_vertices);
+    w.runs(s.mesh.material_ids);
+    w.runs(s.mesh.smoothing_group_ids);
+  }
+}
+
+// Whether no corner names a uv or a normal (then a corner is its position index alone).
+bool positions_only(const std::vector<tinyobj::index_t>& corners) {
+  return std::all_of(corners.begin(), corners.end(),
+                     [](const tinyobj::index_t& c) { return c.texcoord_index == -1 && c.normal_index == -1; });
+}
+
+// The runs of equal values of v, calling run(value, length) for each.
+template <class T, class Run>
+void for_each_run(const std::vector<T>& v, Run run) {
+  for (size_t i = 0; i < v.size();) {
+    size_t j = i + 1;
+    while (j < v.size() && v[j] == v[i]) ++j;
+    run(v[i], j - i);
+    i = j;
   }
 }
 
@@ -45,6 +63,30 @@ class Sink {
     static_assert(std::is_trivially_copyable_v<T>);
     number(v.size());
     self().raw(v.data(), v.size() * sizeof(T));
+  }
+  // A face's corners: their position indices alone where no corner names a
+  // uv or normal (a mesh of positions only: 4 bytes a corner, not 12).
+  void corners(const std::vector<tinyobj::index_t>& v) {
+    if (!positions_only(v)) {
+      number(0);
+      array(v);
+      return;
+    }
+    number(1);
+    number(v.size());
+    for (const tinyobj::index_t& c : v) self().raw(&c.vertex_index, sizeof c.vertex_index);
+  }
+  // Per-face values as runs of one value (a section's faces mostly share
+  // their material, smoothing group and corner count).
+  template <class T>
+  void runs(const std::vector<T>& v) {
+    size_t n = 0;
+    for_each_run(v, [&](const T&, size_t) { ++n; });
+    number(n);
+    for_each_run(v, [&](const T& value, size_t length) {
+      self().raw(&value, sizeof value);
+      number(length);
+    });
   }
 
  private:
@@ -100,6 +142,29 @@ class Reader {
     v->resize(count(sizeof(T)));
     raw(v->data(), v->size() * sizeof(T));
   }
+  void corners(std::vector<tinyobj::index_t>* v) {
+    const uint64_t positions = number();
+    if (positions > 1) throw Error("shared OBJ parse: bad corner kind (a bug)");
+    if (positions == 0) return array(v);
+    v->resize(count(sizeof(int)));
+    for (tinyobj::index_t& c : *v) {
+      raw(&c.vertex_index, sizeof c.vertex_index);
+      c.texcoord_index = c.normal_index = -1;
+    }
+  }
+  // Runs of at most `most` values in all.
+  template <class T>
+  void runs(std::vector<T>* v, size_t most) {
+    const size_t n = count(sizeof(T) + sizeof(uint64_t));
+    v->clear();
+    for (size_t i = 0; i < n; ++i) {
+      T value;
+      raw(&value, sizeof value);
+      const uint64_t length = number();
+      if (length > most - v->size()) throw Error("shared OBJ parse: more faces than corners (a bug)");
+      v->insert(v->end(), size_t(length), value);
+    }
+  }
 
  private:
   const std::vector<std::byte>& in_;
@@ -140,13 +205,14 @@ std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::v
     r.array(&p.attrib.normals);
     r.array(&p.attrib.texcoords);
     r.array(&p.attrib.colors);
-    p.shapes.resize(r.count(5 * sizeof(uint64_t)));  // a shape takes at least its five sizes
+    p.shapes.resize(r.count(6 * sizeof(uint64_t)));  // a shape takes at least its six sizes
     for (tinyobj::shape_t& s : p.shapes) {
       s.name = r.text();
-      r.array(&s.mesh.indices);
-      r.array(&s.mesh.num_face_vertices);
-      r.array(&s.mesh.material_ids);
-      r.array(&s.mesh.smoothing_group_ids);
+      r.corners(&s.mesh.indices);
+      const size_t faces_at_most = s.mesh.indices.size();
+      r.runs(&s.mesh.num_face_vertices, faces_at_most);
+      r.runs(&s.mesh.material_ids, faces_at_most);
+      r.runs(&s.mesh.smoothing_group_ids, faces_at_most);
     }
   }
   return read;

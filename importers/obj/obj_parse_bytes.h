@@ -4,8 +4,10 @@
 // shape's name and faces (corners, corner counts, materials, smoothing
 // groups), the warnings, and whether the chunk parsed, must fall back, or
 // failed (an exception, carried as its message so that every part stops).
-// Plain copies of the arrays with their sizes, read back bounds-checked: a
-// mismatch is a bug, reported as rayform::Error.
+// Plain copies of the arrays with their sizes (a face's corners as their
+// position indices alone where no corner names a uv or normal, per-face
+// values as runs of one value), read back bounds-checked: a mismatch is a
+// bug, reported as rayform::Error.
 #pragma once
 
 #include <tiny_obj_loader.h>
