@@ -199,7 +199,8 @@ void run_render_job(const RenderJob& job) {
   // 1 ms here): start them on a helper thread while the scene loads.
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
-  // Under mpirun every rank loads and prepares the scene, then renders a share of the frame.
+  // Under mpirun every rank loads (sharing a large OBJ's parse) and prepares the scene, then renders a share of the
+  // frame.
   const Ranks& rank = ranks();
   const bool spread = job.spread_frame && rank.distributed();
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
