@@ -3,6 +3,7 @@
 #include "course_args.h"
 #include "distributed_frame.h"
 #include "messages.h"
+#include "rank_work_share.h"
 #include "ranks.h"
 
 #include "progress.h"
@@ -198,7 +199,8 @@ void run_render_job(const RenderJob& job) {
   // 1 ms here): start them on a helper thread while the scene loads.
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
-  // Under mpirun every rank loads and prepares the scene, then renders a share of the frame.
+  // Under mpirun every rank loads (sharing a large OBJ's parse) and prepares the scene, then renders a share of the
+  // frame.
   const Ranks& rank = ranks();
   const bool spread = job.spread_frame && rank.distributed();
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
@@ -209,8 +211,15 @@ void run_render_job(const RenderJob& job) {
   double load_s = 0.0, prepare_s = 0.0;
   std::exception_ptr failure;
   try {
-    loaded = job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready_options(job))
-                           : load_ready_scene(job.input, ready_options(job));
+    // A spread frame's ranks share the load's work (a large OBJ's parse):
+    // every rank must call this, as each does. Batches do not share.
+    WorkShare load_share;
+    ReadyOptions ready = ready_options(job);
+    if (spread) {
+      load_share = rank_work_share();
+      ready.load.share = &load_share;
+    }
+    loaded = job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready) : load_ready_scene(job.input, ready);
     if (!quiet) {
       for (const std::string& w : loaded.warnings) warn(w);
       for (const std::string& n : loaded.notes) note(n);

@@ -38,9 +38,14 @@ LoadedScene read_scene(const std::string& path, const LoadOptions& options) {
       out.warnings = std::move(cs.warnings);
       return out;
     }
-    case SceneFormat::obj:
-      out.scene = read_obj_scene(path, ObjReadOptions{options.flat_normals, options.access}, &out.warnings);
+    case SceneFormat::obj: {
+      ObjReadOptions obj;
+      obj.flat = options.flat_normals;
+      obj.access = options.access;
+      obj.share = options.share;
+      out.scene = read_obj_scene(path, obj, &out.warnings);
       return out;
+    }
     case SceneFormat::gltf: {
       GltfReadOptions gltf;
       gltf.scene = options.gltf_scene;

@@ -7,6 +7,7 @@
 #include "rayform/importers/referenced_files.h"
 #include "rayform/scene/limits.h"
 #include "rayform/scene/scene.h"
+#include "rayform/scene/work_share.h"
 
 #include <optional>
 #include <string>
@@ -22,6 +23,10 @@ struct LoadOptions {
   int gltf_scene = -1;                   // glTF: the scene to load; -1: the file's default scene
   Limits limits{};                       // checked while reading and, for the totals, after
   FileAccess access{};                   // the files a scene names
+  // The processes loading the same file at once, to share the work among
+  // (see ObjReadOptions::share): OBJ only, where parsing a large text pays
+  // to share; course scenes and glTF files are read whole by each.
+  const WorkShare* share = nullptr;
 };
 
 struct LoadedScene {

@@ -1,11 +1,15 @@
 #include "rayform/importers/obj/obj_parallel_parse.h"
 
+#include "rayform/importers/obj/obj_parse_bytes.h"
 #include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
+#include "rayform/scene/error.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <exception>
 #include <cstring>
 #include <istream>
 #include <sstream>
@@ -164,12 +168,7 @@ bool keep_warnings(const std::string& warn, std::string* kept) {
   return true;
 }
 
-struct ChunkResult {
-  bool ok = false;
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
-  std::string warn;
-};
+using ChunkResult = obj::ChunkParse;
 
 // The chunk's shapes are those of its sections with faces, each face of
 // three corners or more, and its vertices those of its `v` lines.
@@ -239,9 +238,81 @@ void append(std::vector<T>& to, const std::vector<T>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
+// The part of a shared parse that chunk k falls to: the chunks are dealt
+// in turn, so that each part gets as many bytes (the chunks are of about
+// one size) and as much of each kind of line (a file of vertices then
+// faces would give the faces, which take longer to parse per byte, to the
+// last parts if each took a run of the text).
+int chunk_part(size_t k, int parts) { return int(k % size_t(parts)); }
+
+std::string what_was_thrown() {
+  try {
+    throw;
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "an unknown exception";
+  }
+}
+
+// Each part parses the chunks that fall to it, and one exchange gives every
+// part every chunk's result. Nothing is thrown between the first chunk and
+// the exchange (a part that threw there would leave the others waiting):
+// what a chunk throws travels as its error, and every part then throws it.
+void parse_shared(const WorkShare& share, const std::function<void(size_t)>& parse_chunk,
+                  std::vector<ChunkResult>* results) {
+  std::vector<ChunkResult>& r = *results;
+  const size_t n = r.size();
+  std::vector<size_t> mine;
+  for (size_t k = 0; k < n; ++k)
+    if (chunk_part(k, share.parts) == share.part) mine.push_back(k);
+  std::vector<std::byte> bytes;
+  try {
+    tbb::parallel_for(size_t(0), mine.size(), [&](size_t i) {
+      try {
+        parse_chunk(mine[i]);
+      } catch (...) {
+        r[mine[i]] = ChunkResult{};
+        r[mine[i]].error = what_was_thrown();
+      }
+    });
+    size_t size = 0;
+    for (size_t k : mine) size += obj::chunk_bytes_size(r[k]);
+    bytes.reserve(size);
+    for (size_t k : mine) {
+      obj::append_chunk_bytes(k, r[k], &bytes);
+      r[k] = ChunkResult{};
+    }
+  } catch (...) {
+    ChunkResult failed;
+    failed.error = what_was_thrown();
+    bytes.clear();
+    for (size_t k : mine) obj::append_chunk_bytes(k, failed, &bytes);
+  }
+  std::vector<std::vector<std::byte>> all = share.exchange(std::move(bytes));
+  if (all.size() != size_t(share.parts))
+    throw Error("shared OBJ parse: " + std::to_string(all.size()) + " parts answered, not " +
+                std::to_string(share.parts) + " (a bug)");
+  std::vector<uint8_t> received(n, 0);
+  for (size_t p = 0; p < all.size(); ++p) {
+    for (size_t k : obj::read_chunk_bytes(all[p], &r))
+      if (chunk_part(k, share.parts) != int(p) || received[k]++)
+        throw Error("shared OBJ parse: part " + std::to_string(p) + " sent chunk " + std::to_string(k) +
+                    ", not its own (a bug)");
+    std::vector<std::byte>().swap(all[p]);
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (!received[k]) throw Error("shared OBJ parse: no part sent chunk " + std::to_string(k) + " (a bug)");
+    if (!r[k].error.empty())
+      throw Error("parsing OBJ text in chunks: part " + std::to_string(chunk_part(k, share.parts)) +
+                  " failed: " + r[k].error);
+  }
+}
+
 }  // namespace
 
-bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out) {
+bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
+                       const WorkShare* share) {
   const std::vector<size_t> starts = chunk_starts(text, std::max<size_t>(chunk_bytes, 1));
   const size_t n = starts.size() - 1;
   std::vector<ChunkScan> scans(n);
@@ -251,7 +322,7 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
 
   // Each chunk with its polygons left whole (split below, once every position is known).
   std::vector<ChunkResult> results(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t k) {
+  const std::function<void(size_t)> parse_chunk = [&](size_t k) {
     ChunkResult& r = results[k];
     TextStreamBuffer buffer(prefixes[k], text.substr(starts[k], starts[k + 1] - starts[k]));
     std::istream in(&buffer);
@@ -261,7 +332,9 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     r.ok = tinyobj::LoadObj(&r.attrib, &r.shapes, &materials, &warn, &err, &in, reader.get(),
                             /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
            keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
-  });
+  };
+  if (share && share->shared()) parse_shared(*share, parse_chunk, &results);
+  else tbb::parallel_for(size_t(0), n, parse_chunk);
   if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
 
   ObjParse& o = *out;

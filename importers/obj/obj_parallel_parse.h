@@ -25,6 +25,8 @@
 // file).
 #pragma once
 
+#include "rayform/scene/work_share.h"
+
 #include <tiny_obj_loader.h>
 
 #include <cstddef>
@@ -49,6 +51,16 @@ using MaterialReaderFactory = std::function<std::unique_ptr<tinyobj::MaterialRea
 // Parses `text` in chunks of about `chunk_bytes` (at least one line each) at
 // once. False, with `out` unspecified, where the result could differ from one
 // LoadObj over the whole text: then parse it that way.
-bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out);
+//
+// With a `share` of several parts (rayform/scene/work_share.h), every part
+// calls this with the same text, readers and chunk size; each scans the
+// whole text but parses only the chunks that fall to it (every parts-th
+// one), and one exchange gives every part
+// every chunk's result (obj_parse_bytes.h), from which each joins the same
+// ObjParse as without a share, or returns false alike. The exchange is made
+// unless the scan alone falls back (before it, every part does the same).
+// Throws rayform::Error on every part when a chunk's parse threw on one.
+bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
+                       const WorkShare* share = nullptr);
 
 }  // namespace rayform

@@ -46,6 +46,11 @@ constexpr float default_grey = 0.8f;
 
 // Smaller files are parsed in one piece: threads do not pay there.
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
+// A parse shared among processes (ObjReadOptions::share) cuts the text into
+// this many chunks per process: a number that does not depend on a
+// process's threads (all must cut alike), enough for 8 threads each to take
+// 4 chunks (balance), and small enough to cost nothing per chunk.
+constexpr size_t shared_chunks_per_part = 32;
 
 std::string trim(std::string s) {
   size_t b = s.find_first_not_of(" \t\r\n");
@@ -174,12 +179,17 @@ class ObjSceneBuilder {
   ObjParse parse() {
     ObjParse parsed;
     MaterialReaderFactory readers = [&] { return std::make_unique<PreloadedMaterials>(lib_); };
+    const WorkShare* share = options_.share && options_.share->shared() ? options_.share : nullptr;
     size_t chunk = options_.parse_chunk_bytes;
-    if (chunk == 0) {
+    if (chunk == 0 && share) {
+      // The same chunks on every part, whatever threads each has.
+      chunk =
+          text_.size() >= min_parallel_bytes ? text_.size() / (size_t(share->parts) * shared_chunks_per_part) + 1 : 0;
+    } else if (chunk == 0) {
       const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
       chunk = threads > 1 && text_.size() >= min_parallel_bytes ? text_.size() / (4 * threads) + 1 : 0;
     }
-    if (chunk != 0 && chunk != ObjReadOptions::serial && parse_obj_chunked(text_, readers, chunk, &parsed))
+    if (chunk != 0 && chunk != ObjReadOptions::serial && parse_obj_chunked(text_, readers, chunk, &parsed, share))
       return parsed;
     parsed = ObjParse{};
     std::vector<tinyobj::material_t> materials;

@@ -28,6 +28,7 @@
 
 #include "rayform/importers/referenced_files.h"
 #include "rayform/scene/scene.h"
+#include "rayform/scene/work_share.h"
 
 #include <cstddef>
 #include <string>
@@ -43,6 +44,11 @@ struct ObjReadOptions {
   // forces chunks of about that many bytes (tests: the result is the same).
   static constexpr size_t serial = ~size_t(0);
   size_t parse_chunk_bytes = 0;
+  // The processes that read the same file at the same time, to share the
+  // parse of a large text among them (obj_parallel_parse.h); each then ends
+  // with the Scene one reading alone makes. Every part must read the file
+  // with the same options. Null or one part: not shared.
+  const WorkShare* share = nullptr;
 };
 
 // Reads an OBJ file (and the .mtl files it names). Warnings, if wanted, are

@@ -3,9 +3,9 @@
 # ...` writes exactly the files, byte for byte, that one process writes with
 # the same options: colour and every AOV (depth, normals, albedo, coverage as
 # the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
-# own command line too), an asset, and a glass scene with --spp 16 --shadows
-# --bounces 3; --stats shows each rank's share of the tiles, which add up to
-# the frame's.
+# own command line too), an asset, a glass scene with --spp 16 --shadows
+# --bounces 3, and an OBJ large enough for the ranks to share its parse;
+# --stats shows each rank's share of the tiles, which add up to the frame's.
 source "$(dirname "$0")/lib.sh"
 require_mpi
 require_shared
@@ -15,6 +15,21 @@ failures=0
 fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
 
 course=$RAYFORM_SHARED/course
+# An OBJ text of more than 1 MiB, whose parse the ranks share (ObjReadOptions::share):
+# a wavy grid of triangles and quads in groups.
+awk -v n=220 'BEGIN {
+  for (y = 0; y < n; y++) for (x = 0; x < n; x++)
+    printf "v %.5f %.5f %.5f\n", x / n - 0.5, y / n - 0.5, 0.05 * sin(x * 0.3) * cos(y * 0.2)
+  for (y = 0; y + 1 < n; y++) {
+    if (y % 50 == 0) print "g band" y
+    for (x = 0; x + 1 < n; x++) {
+      a = y * n + x + 1
+      if ((x + y) % 3 == 0) printf "f %d %d %d %d\n", a, a + 1, a + n + 1, a + n
+      else printf "f %d %d %d\nf %d %d %d\n", a, a + 1, a + n + 1, a, a + n + 1, a + n
+    }
+  }
+}' >grid.obj
+[ "$(wc -c <grid.obj)" -gt 1048576 ] || fail obj-shared "grid.obj is too small to take the shared parse"
 # name | arguments before the outputs | outputs (each NAME, replaced by one/NAME and n/NAME)
 cases=(
   "course|render $course/2012/scene07_shine.txt --size 97x61 -q|-o @c.png --depth 8:18:@d.png --normals @n.png"
@@ -25,6 +40,8 @@ cases=(
   # Two-pass sampling: the first pass covers the whole image on every rank, the second is shared.
   "grid-filter|-input $course/2012-a5/scene10_sphere.txt -size 61 47 -jitter -filter -shadows -quiet|-output @c.png"
   "adaptive|render $course/2012-a5/scene10_sphere.txt --size 61x47 --target-error 0.01 --shadows -q|-o @c.png --albedo @a.png"
+  # A large OBJ: the ranks share its parse, and the frame is still the one-process frame.
+  "obj-shared|render grid.obj --size 72x54 --orbit 20,50 -q|-o @c.png --normals @n.png --albedo @a.png"
 )
 for c in "${cases[@]}"; do
   IFS='|' read -r name args outs <<<"$c"

@@ -1,0 +1,221 @@
+#include "rayform/importers/obj/obj_parse_bytes.h"
+
+#include "rayform/scene/error.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+namespace rayform::obj {
+namespace {
+
+// Puts the fields of a chunk, in order, to a sink: one that counts their
+// bytes, then one that copies them.
+template <class Sink>
+void put_chunk(Sink& w, size_t chunk, const ChunkParse& parse) {
+  w.number(chunk);
+  w.number(parse.ok ? 1 : 0);
+  w.text(parse.error);
+  if (!parse.ok) return;
+  w.text(parse.warn);
+  w.array(parse.attrib.vertices);
+  w.array(parse.attrib.normals);
+  w.array(parse.attrib.texcoords);
+  w.array(parse.attrib.colors);
+  w.number(parse.shapes.size());
+  for (const tinyobj::shape_t& s : parse.shapes) {
+    w.text(s.name);
+    w.corners(s.mesh.indices);
+    w.runs(s.mesh.num_face_vertices);
+    w.runs(s.mesh.material_ids);
+    w.runs(s.mesh.smoothing_group_ids);
+  }
+}
+
+// Whether no corner names a uv or a normal (then a corner is its position index alone).
+bool positions_only(const std::vector<tinyobj::index_t>& corners) {
+  return std::all_of(corners.begin(), corners.end(),
+                     [](const tinyobj::index_t& c) { return c.texcoord_index == -1 && c.normal_index == -1; });
+}
+
+// The runs of equal values of v, calling run(value, length) for each.
+template <class T, class Run>
+void for_each_run(const std::vector<T>& v, Run run) {
+  for (size_t i = 0; i < v.size();) {
+    size_t j = i + 1;
+    while (j < v.size() && v[j] == v[i]) ++j;
+    run(v[i], j - i);
+    i = j;
+  }
+}
+
+template <class Derived>
+class Sink {
+ public:
+  void number(uint64_t v) { self().raw(&v, sizeof v); }
+  void text(const std::string& s) {
+    number(s.size());
+    self().raw(s.data(), s.size());
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    number(v.size());
+    self().raw(v.data(), v.size() * sizeof(T));
+  }
+  // A face's corners: their position indices alone where no corner names a
+  // uv or normal (a mesh of positions only: 4 bytes a corner, not 12).
+  void corners(const std::vector<tinyobj::index_t>& v) {
+    if (!positions_only(v)) {
+      number(0);
+      array(v);
+      return;
+    }
+    number(1);
+    number(v.size());
+    for (const tinyobj::index_t& c : v) self().raw(&c.vertex_index, sizeof c.vertex_index);
+  }
+  // Per-face values as runs of one value (a section's faces mostly share
+  // their material, smoothing group and corner count).
+  template <class T>
+  void runs(const std::vector<T>& v) {
+    size_t n = 0;
+    for_each_run(v, [&](const T&, size_t) { ++n; });
+    number(n);
+    for_each_run(v, [&](const T& value, size_t length) {
+      self().raw(&value, sizeof value);
+      number(length);
+    });
+  }
+
+ private:
+  Derived& self() { return static_cast<Derived&>(*this); }
+};
+
+class Counter : public Sink<Counter> {
+ public:
+  void raw(const void*, size_t n) { bytes += n; }
+  size_t bytes = 0;
+};
+
+class Writer : public Sink<Writer> {
+ public:
+  explicit Writer(std::byte* to) : to_(to) {}
+  void raw(const void* data, size_t n) {
+    if (n) std::memcpy(to_, data, n);
+    to_ += n;
+  }
+
+ private:
+  std::byte* to_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<std::byte>& in) : in_(in) {}
+
+  bool done() const { return at_ == in_.size(); }
+  void raw(void* data, size_t n) {
+    if (n > in_.size() - at_) throw Error("shared OBJ parse: the bytes of a part end early (a bug)");
+    if (n) std::memcpy(data, in_.data() + at_, n);
+    at_ += n;
+  }
+  uint64_t number() {
+    uint64_t v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  // A count of items of `size` bytes that the rest of the bytes can hold.
+  size_t count(size_t size) {
+    const uint64_t n = number();
+    if (n > (in_.size() - at_) / size) throw Error("shared OBJ parse: an array runs past the bytes of a part (a bug)");
+    return size_t(n);
+  }
+  std::string text() {
+    std::string s(count(1), '\0');
+    raw(s.data(), s.size());
+    return s;
+  }
+  template <class T>
+  void array(std::vector<T>* v) {
+    v->resize(count(sizeof(T)));
+    raw(v->data(), v->size() * sizeof(T));
+  }
+  void corners(std::vector<tinyobj::index_t>* v) {
+    const uint64_t positions = number();
+    if (positions > 1) throw Error("shared OBJ parse: bad corner kind (a bug)");
+    if (positions == 0) return array(v);
+    v->resize(count(sizeof(int)));
+    for (tinyobj::index_t& c : *v) {
+      raw(&c.vertex_index, sizeof c.vertex_index);
+      c.texcoord_index = c.normal_index = -1;
+    }
+  }
+  // Runs of at most `most` values in all.
+  template <class T>
+  void runs(std::vector<T>* v, size_t most) {
+    const size_t n = count(sizeof(T) + sizeof(uint64_t));
+    v->clear();
+    for (size_t i = 0; i < n; ++i) {
+      T value;
+      raw(&value, sizeof value);
+      const uint64_t length = number();
+      if (length > most - v->size()) throw Error("shared OBJ parse: more faces than corners (a bug)");
+      v->insert(v->end(), size_t(length), value);
+    }
+  }
+
+ private:
+  const std::vector<std::byte>& in_;
+  size_t at_ = 0;
+};
+
+}  // namespace
+
+size_t chunk_bytes_size(const ChunkParse& parse) {
+  Counter c;
+  put_chunk(c, 0, parse);
+  return c.bytes;
+}
+
+void append_chunk_bytes(size_t chunk, const ChunkParse& parse, std::vector<std::byte>* bytes) {
+  const size_t at = bytes->size();
+  bytes->resize(at + chunk_bytes_size(parse));
+  Writer w(bytes->data() + at);
+  put_chunk(w, chunk, parse);
+}
+
+std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::vector<ChunkParse>* chunks) {
+  std::vector<size_t> read;
+  Reader r(bytes);
+  while (!r.done()) {
+    const uint64_t chunk = r.number();
+    if (chunk >= chunks->size())
+      throw Error("shared OBJ parse: chunk " + std::to_string(chunk) + " of " + std::to_string(chunks->size()) +
+                  " (a bug)");
+    ChunkParse& p = (*chunks)[chunk];
+    p = ChunkParse{};
+    p.ok = r.number() != 0;
+    p.error = r.text();
+    read.push_back(size_t(chunk));
+    if (!p.ok) continue;
+    p.warn = r.text();
+    r.array(&p.attrib.vertices);
+    r.array(&p.attrib.normals);
+    r.array(&p.attrib.texcoords);
+    r.array(&p.attrib.colors);
+    p.shapes.resize(r.count(6 * sizeof(uint64_t)));  // a shape takes at least its six sizes
+    for (tinyobj::shape_t& s : p.shapes) {
+      s.name = r.text();
+      r.corners(&s.mesh.indices);
+      const size_t faces_at_most = s.mesh.indices.size();
+      r.runs(&s.mesh.num_face_vertices, faces_at_most);
+      r.runs(&s.mesh.material_ids, faces_at_most);
+      r.runs(&s.mesh.smoothing_group_ids, faces_at_most);
+    }
+  }
+  return read;
+}
+
+}  // namespace rayform::obj
