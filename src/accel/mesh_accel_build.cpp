@@ -16,9 +16,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <deque>
+#include <exception>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace rayform {
@@ -141,6 +144,18 @@ struct BuildNode {
   int n = 0;
   // Totals of the subtree (this node included), for the flattening offsets.
   uint32_t nodes = 0, packets = 0, triangles = 0;
+  // >= 0: a stand-in for subtree `subtree` of a shared build, written by
+  // another part and received flattened (n is 0; the totals are its own).
+  int subtree = -1;
+};
+
+// A node of a shared build's top whose subtree one part builds: the range
+// and split make_child had for it, and the child slot that points to it.
+struct SubtreeTask {
+  Range range;
+  Split split;
+  int depth = 0;
+  BuildChild* slot = nullptr;
 };
 
 class MeshBuilder {
@@ -154,16 +169,72 @@ class MeshBuilder {
 
   // The root node (always a node, even over a single leaf).
   BuildNode* build(const Range& root) {
-    if (root.count() <= uint32_t(max_leaf_)) {
-      BuildNode* n = new_node();
-      n->n = 1;
-      n->child[0] = leaf(root);
-      finish(n);
-      return n;
-    }
+    if (root.count() <= uint32_t(max_leaf_)) return single_leaf_root(root);
     Split s = find_split(root, 0);
     return build_node(root, s, 0);
   }
+
+  // The top of the tree build() makes, for a build shared by `parts` parts:
+  // the root node, opened as build_node opens it, and below it the interior
+  // children that make_child would build, as tasks; where those would
+  // balance badly over the parts (longest-processing-time first, by
+  // triangles), the largest is opened in turn. `top` gets the nodes made
+  // (parents before children), `tasks` the subtrees, depth first.
+  void build_top(const Range& root, int parts, std::vector<BuildNode*>& top, std::vector<SubtreeTask>& tasks) {
+    if (root.count() <= uint32_t(max_leaf_)) {
+      top.push_back(single_leaf_root(root));
+      return;
+    }
+    Split s = find_split(root, 0);
+    top.push_back(open_top(root, s, 0, tasks));
+    const int max_openings = 4 * parts;
+    for (int opened = 0; opened < max_openings; ++opened) {
+      if (tasks.empty()) break;
+      std::vector<int> owner = assign_tasks(tasks, parts);
+      std::vector<uint64_t> load(parts, 0);
+      uint64_t total = 0;
+      for (size_t t = 0; t < tasks.size(); ++t) {
+        load[owner[t]] += tasks[t].range.count();
+        total += tasks[t].range.count();
+      }
+      // Within a tenth of an even share: opening more would cost every part
+      // more than the balance gains.
+      if (10 * parts * *std::max_element(load.begin(), load.end()) <= 11 * total) break;
+      size_t largest = 0;
+      for (size_t t = 1; t < tasks.size(); ++t)
+        if (tasks[t].range.count() > tasks[largest].range.count()) largest = t;
+      SubtreeTask task = tasks[largest];
+      std::vector<SubtreeTask> below;
+      BuildNode* n = open_top(task.range, task.split, task.depth, below);
+      task.slot->node = n;
+      top.push_back(n);
+      tasks.erase(tasks.begin() + std::ptrdiff_t(largest));
+      tasks.insert(tasks.begin() + std::ptrdiff_t(largest), below.begin(), below.end());
+    }
+  }
+
+  // Which part builds each task: largest first (ties: the earlier task), each
+  // to the part with the fewest triangles so far (ties: the lower part).
+  static std::vector<int> assign_tasks(const std::vector<SubtreeTask>& tasks, int parts) {
+    std::vector<size_t> order(tasks.size());
+    for (size_t t = 0; t < order.size(); ++t) order[t] = t;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return tasks[a].range.count() > tasks[b].range.count(); });
+    std::vector<uint64_t> load(parts, 0);
+    std::vector<int> owner(tasks.size(), 0);
+    for (size_t t : order) {
+      int p = int(std::min_element(load.begin(), load.end()) - load.begin());
+      owner[t] = p;
+      load[p] += tasks[t].range.count();
+    }
+    return owner;
+  }
+
+  // The subtree of a task, as make_child would build it below its slot.
+  BuildNode* build_task(const SubtreeTask& t) { return build_node(t.range, t.split, t.depth); }
+
+  // The totals of a top node from its children's (stand-ins included).
+  void refinish(BuildNode* n) const { finish(n); }
 
  private:
   static constexpr uint32_t parallel_threshold = 4096;  // smaller subtrees are built by one task
@@ -178,6 +249,31 @@ class MeshBuilder {
   tbb::enumerable_thread_specific<std::deque<BuildNode>> arenas_;
 
   BuildNode* new_node() { return &arenas_.local().emplace_back(); }
+
+  BuildNode* single_leaf_root(const Range& root) {
+    BuildNode* n = new_node();
+    n->n = 1;
+    n->child[0] = leaf(root);
+    finish(n);
+    return n;
+  }
+
+  // A node opened as build_node opens it, whose children are made as
+  // make_child makes them but for the building below: those are left as
+  // tasks (appended in child order).
+  BuildNode* open_top(const Range& r, const Split& s, int depth, std::vector<SubtreeTask>& tasks) {
+    Range child_ranges[bvh_width];
+    const int k = open_node(r, s, depth, child_ranges);
+    BuildNode* n = new_node();
+    n->n = k;
+    Split splits[bvh_width];
+    bool leaves[bvh_width];
+    tbb::parallel_for(0, k,
+                      [&](int i) { leaves[i] = leaf_or_split(child_ranges[i], depth + 1, n->child[i], splits[i]); });
+    for (int i = 0; i < k; ++i)
+      if (!leaves[i]) tasks.push_back({child_ranges[i], splits[i], depth + 1, &n->child[i]});
+    return n;
+  }
 
   static void set_bounds(BuildChild& c, const Box& b) {
     float l[4], h[4];
@@ -374,22 +470,35 @@ class MeshBuilder {
     return {left, right};
   }
 
+  // What make_child makes of range r: true and the leaf in c, or false, c's
+  // bounds and the split of the node to build below c in s.
+  bool leaf_or_split(const Range& r, int depth, BuildChild& c, Split& s) {
+    if (r.count() <= uint32_t(min_leaf_)) {
+      c = leaf(r);
+      return true;
+    }
+    s = find_split(r, depth);
+    if (r.count() <= uint32_t(max_leaf_) && float(blocks(r.count())) <= s.cost) {
+      c = leaf(r);
+      return true;
+    }
+    c = BuildChild{};
+    set_bounds(c, r.geom);
+    return false;
+  }
+
   // A child for range r: a leaf, or a node built below it.
   BuildChild make_child(const Range& r, int depth) {
-    if (r.count() <= uint32_t(min_leaf_)) return leaf(r);
-    Split s = find_split(r, depth);
-    if (r.count() <= uint32_t(max_leaf_) && float(blocks(r.count())) <= s.cost) return leaf(r);
     BuildChild c;
-    set_bounds(c, r.geom);
-    c.node = build_node(r, s, depth);
+    Split s;
+    if (!leaf_or_split(r, depth, c, s)) c.node = build_node(r, s, depth);
     return c;
   }
 
-  // Opens r into up to bvh_width ranges, splitting the one of largest area each
-  // time, then builds below each. r has more than min_leaf_ items, so it is
-  // split at least once: a node never has r as its only child.
-  BuildNode* build_node(const Range& r, const Split& s, int depth) {
-    Range child_ranges[bvh_width];
+  // Opens r into up to bvh_width ranges (returns how many), splitting the one
+  // of largest area each time. r has more than min_leaf_ items, so it is split
+  // at least once: a node never has r as its only child.
+  int open_node(const Range& r, const Split& s, int depth, Range (&child_ranges)[bvh_width]) {
     std::optional<Split> child_splits[bvh_width];
     child_ranges[0] = r;
     child_splits[0] = s;
@@ -420,6 +529,13 @@ class MeshBuilder {
       child_splits[k].reset();
       ++k;
     }
+    return k;
+  }
+
+  // Opens r (open_node), then builds below each child.
+  BuildNode* build_node(const Range& r, const Split& s, int depth) {
+    Range child_ranges[bvh_width];
+    const int k = open_node(r, s, depth, child_ranges);
     BuildNode* n = new_node();
     n->n = k;
     if (r.count() >= parallel_threshold) {
@@ -432,15 +548,39 @@ class MeshBuilder {
   }
 };
 
+// A subtree of a shared build as a part sends it: flattened on its own, node
+// references relative to its root and first packet. The arrays point into the
+// received bytes (unaligned).
+struct FlatSubtree {
+  uint32_t nodes = 0, packets = 0, triangles = 0;
+  const std::byte* node_bytes = nullptr;
+  const std::byte* packet_bytes = nullptr;
+  const std::byte* triangle_bytes = nullptr;
+};
+
 // Writes the build tree depth first: a node, the packets of its leaf children,
 // then its interior children's subtrees in order. Offsets come from the
 // subtree totals, so subtrees are written in parallel and the result does not
-// depend on the threads.
+// depend on the threads. A stand-in for a received subtree is copied there,
+// its references rebased.
 struct Flattener {
   const std::vector<PrimRef>& refs;
   std::span<const vec3> positions;
   std::span<const uint32_t> indices;
   MeshAccel& out;
+  std::span<const FlatSubtree> received = {};
+
+  void copy_subtree(const FlatSubtree& s, uint32_t index, uint32_t packet, uint32_t tri) {
+    std::memcpy(&out.bvh.nodes[index], s.node_bytes, size_t(s.nodes) * sizeof(WideBvhNode));
+    std::memcpy(&out.packets[packet], s.packet_bytes, size_t(s.packets) * sizeof(TrianglePacket));
+    std::memcpy(&out.triangles[tri], s.triangle_bytes, size_t(s.triangles) * sizeof(uint32_t));
+    for (uint32_t i = index; i < index + s.nodes; ++i)
+      for (uint32_t& c : out.bvh.nodes[i].child) {
+        if (!WideBvhNode::is_leaf(c)) c += index;
+        else if (WideBvhNode::leaf_packet_count(c) > 0)  // empty slots stay leaf_ref(0, 0)
+          c = WideBvhNode::leaf_ref(WideBvhNode::leaf_first_packet(c) + packet, WideBvhNode::leaf_packet_count(c));
+      }
+  }
 
   void write_leaf(uint32_t begin, uint32_t end, uint32_t packet, uint32_t tri) {
     uint32_t n = end - begin;
@@ -460,6 +600,10 @@ struct Flattener {
   }
 
   void write(const BuildNode* bn, uint32_t index, uint32_t packet, uint32_t tri) {
+    if (bn->subtree >= 0) {
+      copy_subtree(received[size_t(bn->subtree)], index, packet, tri);
+      return;
+    }
     WideBvhNode& o = out.bvh.nodes[index];
     uint32_t next_node = index + 1;
     struct Task {
@@ -508,14 +652,15 @@ struct Flattener {
   }
 };
 
-}  // namespace
+void append_bytes(std::vector<std::byte>& out, const void* data, size_t size) {
+  const auto* b = static_cast<const std::byte*>(data);
+  out.insert(out.end(), b, b + size);
+}
 
-MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint32_t> indices,
-                           const BvhBuildOptions& options) {
-  MeshAccel m;
+// The PrimRefs of the triangles with finite vertices, in index order, and
+// the root range over them.
+Range triangle_refs(std::span<const vec3> positions, std::span<const uint32_t> indices, std::vector<PrimRef>& refs) {
   const size_t n = indices.size() / 3;
-  if (n >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
-
   // Triangle boxes, and the root range's boxes; triangles with a non-finite
   // vertex are left out (a NaN vertex would not even reach the box: min and
   // max pass over it).
@@ -523,7 +668,7 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
     size_t valid = 0;  // triangles with a box
     Range root;        // over those, in index order
   };
-  std::vector<PrimRef> refs(n);
+  refs.resize(n);
   Boxes boxes = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, 1u << 14), Boxes{},
       [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
@@ -556,24 +701,152 @@ MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint
   if (boxes.valid != n) {
     refs.erase(std::remove_if(refs.begin(), refs.end(), [](const PrimRef& p) { return p.hi[3] == 0.f; }), refs.end());
   }
-  if (refs.empty()) return m;
   Range root = boxes.root;
   root.end = uint32_t(refs.size());
+  return root;
+}
 
-  MeshBuilder builder(refs, options);
-  const BuildNode* tree = builder.build(root);
+void check_packets(const BuildNode* tree) {
   if (tree->packets >= (1u << (31 - WideBvhNode::count_bits)))
     throw std::length_error("build_mesh_accel: too many triangle packets");
+}
 
-  m.bvh.nodes.resize(tree->nodes);
-  m.packets.resize(tree->packets);
-  m.triangles.resize(tree->triangles);
-  Flattener{refs, positions, indices, m}.write(tree, 0, 0, 0);
+void set_root_bounds(MeshAccel& m, const Range& root) {
   float l[4], h[4];
   simd::store(l, root.geom.lo);
   simd::store(h, root.geom.hi);
   m.bvh.root_bounds = Bounds3{vec3(l[0], l[1], l[2]), vec3(h[0], h[1], h[2])};
+}
+
+MeshAccel build_whole(std::span<const vec3> positions, std::span<const uint32_t> indices,
+                      const BvhBuildOptions& options) {
+  MeshAccel m;
+  std::vector<PrimRef> refs;
+  const Range root = triangle_refs(positions, indices, refs);
+  if (refs.empty()) return m;
+  MeshBuilder builder(refs, options);
+  const BuildNode* tree = builder.build(root);
+  check_packets(tree);
+  m.bvh.nodes.resize(tree->nodes);
+  m.packets.resize(tree->packets);
+  m.triangles.resize(tree->triangles);
+  Flattener{refs, positions, indices, m}.write(tree, 0, 0, 0);
+  set_root_bounds(m, root);
   return m;
+}
+
+// The shared build (see build_mesh_accel in mesh_accel.h). A part's bytes: a
+// flag (1: its subtrees follow; 0: it failed), then per subtree it built, in
+// task order, its three totals (uint32) and its nodes, packets and triangles.
+MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t> indices,
+                       const BvhBuildOptions& options, const WorkShare& share) {
+  std::vector<PrimRef> refs;
+  Range root;
+  MeshBuilder builder(refs, options);
+  std::vector<BuildNode*> top;
+  std::vector<SubtreeTask> tasks;
+  std::vector<int> owner;
+  std::vector<std::byte> mine;
+  std::exception_ptr failure;
+  // Whatever this part meets here (an allocation failing), it takes part in
+  // the one exchange, which tells the others.
+  try {
+    root = triangle_refs(positions, indices, refs);
+    if (!refs.empty()) builder.build_top(root, share.parts, top, tasks);
+    owner = MeshBuilder::assign_tasks(tasks, share.parts);
+    std::vector<size_t> own;
+    for (size_t t = 0; t < tasks.size(); ++t)
+      if (owner[t] == share.part) own.push_back(t);
+    std::vector<MeshAccel> flat(own.size());
+    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) {
+      const BuildNode* sub = builder.build_task(tasks[own[i]]);
+      MeshAccel& f = flat[i];
+      f.bvh.nodes.resize(sub->nodes);
+      f.packets.resize(sub->packets);
+      f.triangles.resize(sub->triangles);
+      Flattener{refs, positions, indices, f}.write(sub, 0, 0, 0);
+    });
+    size_t bytes = 1;
+    for (const MeshAccel& f : flat)
+      bytes += 3 * sizeof(uint32_t) + f.bvh.nodes.size() * sizeof(WideBvhNode) +
+               f.packets.size() * sizeof(TrianglePacket) + f.triangles.size() * sizeof(uint32_t);
+    mine.reserve(bytes);
+    mine.push_back(std::byte{1});
+    for (MeshAccel& f : flat) {
+      const uint32_t totals[3] = {uint32_t(f.bvh.nodes.size()), uint32_t(f.packets.size()),
+                                  uint32_t(f.triangles.size())};
+      append_bytes(mine, totals, sizeof totals);
+      append_bytes(mine, f.bvh.nodes.data(), f.bvh.nodes.size() * sizeof(WideBvhNode));
+      append_bytes(mine, f.packets.data(), f.packets.size() * sizeof(TrianglePacket));
+      append_bytes(mine, f.triangles.data(), f.triangles.size() * sizeof(uint32_t));
+      f = MeshAccel{};
+    }
+  } catch (...) {
+    failure = std::current_exception();
+    mine.assign(1, std::byte{0});
+  }
+  const std::vector<std::vector<std::byte>> all = share.exchange(std::move(mine));
+  if (failure) std::rethrow_exception(failure);
+  if (all.size() != size_t(share.parts)) throw std::logic_error("build_mesh_accel: the exchange lost parts");
+  for (int p = 0; p < share.parts; ++p)
+    if (all[p].empty() || all[p][0] != std::byte{1})
+      throw std::runtime_error("build_mesh_accel: part " + std::to_string(p) + " of a shared build failed");
+
+  MeshAccel m;
+  if (refs.empty()) return m;
+  // Each task's subtree from its part's bytes, and a stand-in node for it.
+  std::vector<FlatSubtree> received(tasks.size());
+  std::vector<size_t> at(share.parts, 1);
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    const std::vector<std::byte>& b = all[owner[t]];
+    size_t& pos = at[owner[t]];
+    FlatSubtree& s = received[t];
+    uint32_t totals[3];
+    if (b.size() - pos < sizeof totals) throw std::logic_error("build_mesh_accel: a part's bytes end early");
+    std::memcpy(totals, b.data() + pos, sizeof totals);
+    pos += sizeof totals;
+    s.nodes = totals[0];
+    s.packets = totals[1];
+    s.triangles = totals[2];
+    const size_t need = size_t(s.nodes) * sizeof(WideBvhNode) + size_t(s.packets) * sizeof(TrianglePacket) +
+                        size_t(s.triangles) * sizeof(uint32_t);
+    if (b.size() - pos < need) throw std::logic_error("build_mesh_accel: a part's bytes end early");
+    s.node_bytes = b.data() + pos;
+    s.packet_bytes = s.node_bytes + size_t(s.nodes) * sizeof(WideBvhNode);
+    s.triangle_bytes = s.packet_bytes + size_t(s.packets) * sizeof(TrianglePacket);
+    pos += need;
+  }
+  for (int p = 0; p < share.parts; ++p)
+    if (at[p] != all[p].size()) throw std::logic_error("build_mesh_accel: a part sent more bytes than its subtrees");
+  std::deque<BuildNode> stand_ins;
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    BuildNode& n = stand_ins.emplace_back();
+    n.subtree = int(t);
+    n.nodes = received[t].nodes;
+    n.packets = received[t].packets;
+    n.triangles = received[t].triangles;
+    tasks[t].slot->node = &n;
+  }
+  for (auto it = top.rbegin(); it != top.rend(); ++it) builder.refinish(*it);  // children before parents
+  const BuildNode* tree = top.front();
+  check_packets(tree);
+  m.bvh.nodes.resize(tree->nodes);
+  m.packets.resize(tree->packets);
+  m.triangles.resize(tree->triangles);
+  Flattener{refs, positions, indices, m, received}.write(tree, 0, 0, 0);
+  set_root_bounds(m, root);
+  return m;
+}
+
+}  // namespace
+
+MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint32_t> indices,
+                           const BvhBuildOptions& options, const WorkShare* share) {
+  if (indices.size() / 3 >= (size_t(1) << 31)) throw std::length_error("build_mesh_accel: too many triangles");
+  // The same decision on every part: it depends only on the mesh's size and the options.
+  if (share && share->shared() && indices.size() / 3 >= options.share_min_triangles)
+    return build_shared(positions, indices, options, *share);
+  return build_whole(positions, indices, options);
 }
 
 }  // namespace rayform
