@@ -3,6 +3,7 @@
 #include "course_args.h"
 #include "distributed_frame.h"
 #include "messages.h"
+#include "rank_work_share.h"
 #include "ranks.h"
 
 #include "progress.h"
@@ -198,9 +199,11 @@ void run_render_job(const RenderJob& job) {
   // 1 ms here): start them on a helper thread while the scene loads.
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
-  // Under mpirun every rank loads and prepares the scene, then renders a share of the frame.
+  // Under mpirun every rank loads and prepares the scene, building the BVHs of
+  // large meshes shared among the ranks, then renders a share of the frame.
   const Ranks& rank = ranks();
   const bool spread = job.spread_frame && rank.distributed();
+  const WorkShare share_ranks = spread ? rank_work_share() : WorkShare{};
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
   const bool quiet = job.quiet || (spread && !rank.root());
   auto t_load = clock::now();
@@ -224,14 +227,29 @@ void run_render_job(const RenderJob& job) {
         for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
     }
     load_s = seconds_since(t_load);
-    auto t_prepare = clock::now();
-    PrepareOptions po;
-    po.limits = job.limits;
-    prepared = prepare_scene(loaded.scene, po);
-    prepare_s = seconds_since(t_prepare);
   } catch (...) {
     if (!spread) throw;
     failure = std::current_exception();
+  }
+  // The shared builds in prepare are collective: the ranks go on to them only
+  // when every one of them has loaded the scene.
+  bool all_loaded = !failure;
+  if (spread) {
+    const std::vector<bool> loaded_ok = gather_flags(!failure);
+    all_loaded = std::find(loaded_ok.begin(), loaded_ok.end(), false) == loaded_ok.end();
+  }
+  if (all_loaded) {
+    try {
+      auto t_prepare = clock::now();
+      PrepareOptions po;
+      po.limits = job.limits;
+      if (spread) po.share = &share_ranks;
+      prepared = prepare_scene(loaded.scene, po);
+      prepare_s = seconds_since(t_prepare);
+    } catch (...) {
+      if (!spread) throw;
+      failure = std::current_exception();
+    }
   }
   if (spread) agree_scene_ready(failure);
   const ColorOutput color{loaded.color.scene, job.color};

@@ -3,8 +3,9 @@
 # ...` writes exactly the files, byte for byte, that one process writes with
 # the same options: colour and every AOV (depth, normals, albedo, coverage as
 # the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
-# own command line too), an asset, and a glass scene with --spp 16 --shadows
-# --bounces 3; --stats shows each rank's share of the tiles, which add up to
+# own command line too), an asset, a glass scene with --spp 16 --shadows
+# --bounces 3, and a mesh large enough for its BVH to be built shared among
+# the ranks (BvhBuildOptions::share_min_triangles: 65536); --stats shows each rank's share of the tiles, which add up to
 # the frame's.
 source "$(dirname "$0")/lib.sh"
 require_mpi
@@ -15,6 +16,13 @@ failures=0
 fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
 
 course=$RAYFORM_SHARED/course
+# A bumpy height field of 2 x 185 x 185 = 68450 triangles: over the threshold
+# at which the ranks share a mesh's BVH build (build_mesh_accel with a WorkShare).
+awk 'BEGIN { n = 185
+  for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) {
+    x = 2 * i / n - 1; y = 2 * j / n - 1; printf "v %.6f %.6f %.6f\n", x, y, 0.15 * sin(9 * x) * cos(7 * y + 3 * x) }
+  for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+    a = j * (n + 1) + i + 1; b = a + 1; c = a + n + 1; d = c + 1; printf "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c } }' >bumps.obj
 # name | arguments before the outputs | outputs (each NAME, replaced by one/NAME and n/NAME)
 cases=(
   "course|render $course/2012/scene07_shine.txt --size 97x61 -q|-o @c.png --depth 8:18:@d.png --normals @n.png"
@@ -25,6 +33,7 @@ cases=(
   # Two-pass sampling: the first pass covers the whole image on every rank, the second is shared.
   "grid-filter|-input $course/2012-a5/scene10_sphere.txt -size 61 47 -jitter -filter -shadows -quiet|-output @c.png"
   "adaptive|render $course/2012-a5/scene10_sphere.txt --size 61x47 --target-error 0.01 --shadows -q|-o @c.png --albedo @a.png"
+  "shared-bvh|render $tmp/bumps.obj --size 96x72 --orbit 25,50 --spp 4 -q|-o @c.png --normals @n.png --depth 1:6:@d.png"
 )
 for c in "${cases[@]}"; do
   IFS='|' read -r name args outs <<<"$c"
