@@ -548,13 +548,24 @@ class MeshBuilder {
   }
 };
 
+// Where a Flattener writes: the arrays of a MeshAccel, or of a subtree in a
+// shared build's bytes.
+// Packets are whole, or (packet_ids) only their four triangle ids each: the
+// vertices are in every part's mesh, and a tenth of the bytes travel.
+struct FlatArrays {
+  WideBvhNode* nodes;
+  TrianglePacket* packets;  // or nullptr and:
+  uint32_t* packet_ids;     // 4 per packet
+  uint32_t* triangles;
+};
+
 // A subtree of a shared build as a part sends it: flattened on its own, node
-// references relative to its root and first packet. The arrays point into the
-// received bytes (unaligned).
+// references relative to its root and first packet, packets as their ids. The
+// arrays point into the received bytes (unaligned).
 struct FlatSubtree {
   uint32_t nodes = 0, packets = 0, triangles = 0;
   const std::byte* node_bytes = nullptr;
-  const std::byte* packet_bytes = nullptr;
+  const std::byte* packet_id_bytes = nullptr;  // 4 uint32 per packet
   const std::byte* triangle_bytes = nullptr;
 };
 
@@ -567,35 +578,45 @@ struct Flattener {
   const std::vector<PrimRef>& refs;
   std::span<const vec3> positions;
   std::span<const uint32_t> indices;
-  MeshAccel& out;
+  FlatArrays out;
   std::span<const FlatSubtree> received = {};
 
   void copy_subtree(const FlatSubtree& s, uint32_t index, uint32_t packet, uint32_t tri) {
-    std::memcpy(&out.bvh.nodes[index], s.node_bytes, size_t(s.nodes) * sizeof(WideBvhNode));
-    std::memcpy(&out.packets[packet], s.packet_bytes, size_t(s.packets) * sizeof(TrianglePacket));
-    std::memcpy(&out.triangles[tri], s.triangle_bytes, size_t(s.triangles) * sizeof(uint32_t));
+    std::memcpy(out.nodes + index, s.node_bytes, size_t(s.nodes) * sizeof(WideBvhNode));
+    for (uint32_t k = 0; k < s.packets; ++k) {
+      uint32_t ids[4];
+      std::memcpy(ids, s.packet_id_bytes + sizeof ids * size_t(k), sizeof ids);
+      fill_packet(out.packets[packet + k], ids);
+    }
+    std::memcpy(out.triangles + tri, s.triangle_bytes, size_t(s.triangles) * sizeof(uint32_t));
     for (uint32_t i = index; i < index + s.nodes; ++i)
-      for (uint32_t& c : out.bvh.nodes[i].child) {
+      for (uint32_t& c : out.nodes[i].child) {
         if (!WideBvhNode::is_leaf(c)) c += index;
         else if (WideBvhNode::leaf_packet_count(c) > 0)  // empty slots stay leaf_ref(0, 0)
           c = WideBvhNode::leaf_ref(WideBvhNode::leaf_first_packet(c) + packet, WideBvhNode::leaf_packet_count(c));
       }
   }
 
+  void fill_packet(TrianglePacket& p, const uint32_t (&ids)[4]) const {
+    for (uint32_t lane = 0; lane < 4; ++lane) {
+      const uint32_t t = ids[lane];
+      p.id[lane] = t;
+      for (int v = 0; v < 3; ++v) {
+        const vec3& q = positions[indices[3 * size_t(t) + v]];
+        for (int a = 0; a < 3; ++a) p.v[3 * v + a][lane] = q[a];
+      }
+    }
+  }
+
   void write_leaf(uint32_t begin, uint32_t end, uint32_t packet, uint32_t tri) {
     uint32_t n = end - begin;
     for (uint32_t i = 0; i < n; ++i) out.triangles[tri + i] = refs[begin + i].id();
     for (uint32_t k = 0; k < blocks(n); ++k) {
-      TrianglePacket& p = out.packets[packet + k];
-      for (uint32_t lane = 0; lane < 4; ++lane) {
-        uint32_t item = std::min(begin + 4 * k + lane, end - 1);  // unused lanes repeat the last triangle
-        uint32_t t = refs[item].id();
-        p.id[lane] = t;
-        for (int v = 0; v < 3; ++v) {
-          const vec3& q = positions[indices[3 * size_t(t) + v]];
-          for (int a = 0; a < 3; ++a) p.v[3 * v + a][lane] = q[a];
-        }
-      }
+      uint32_t ids[4];
+      for (uint32_t lane = 0; lane < 4; ++lane)
+        ids[lane] = refs[std::min(begin + 4 * k + lane, end - 1)].id();  // unused lanes repeat the last triangle
+      if (out.packets) fill_packet(out.packets[packet + k], ids);
+      else std::memcpy(out.packet_ids + 4 * size_t(packet + k), ids, sizeof ids);
     }
   }
 
@@ -604,7 +625,7 @@ struct Flattener {
       copy_subtree(received[size_t(bn->subtree)], index, packet, tri);
       return;
     }
-    WideBvhNode& o = out.bvh.nodes[index];
+    WideBvhNode& o = out.nodes[index];
     uint32_t next_node = index + 1;
     struct Task {
       const BuildNode* node;
@@ -652,10 +673,17 @@ struct Flattener {
   }
 };
 
-void append_bytes(std::vector<std::byte>& out, const void* data, size_t size) {
-  const auto* b = static_cast<const std::byte*>(data);
-  out.insert(out.end(), b, b + size);
-}
+FlatArrays arrays(MeshAccel& m) { return {m.bvh.nodes.data(), m.packets.data(), nullptr, m.triangles.data()}; }
+
+// The bytes of a packet's ids in a shared build's exchange.
+constexpr size_t packet_ids_size = 4 * sizeof(uint32_t);
+
+// A shared build's subtree header: its totals, and where its arrays start in
+// the part's bytes.
+struct SubtreeHeader {
+  uint32_t nodes, packets, triangles, pad;
+  uint64_t node_at, packet_at, triangle_at;
+};
 
 // The PrimRefs of the triangles with finite vertices, in index order, and
 // the root range over them.
@@ -730,14 +758,15 @@ MeshAccel build_whole(std::span<const vec3> positions, std::span<const uint32_t>
   m.bvh.nodes.resize(tree->nodes);
   m.packets.resize(tree->packets);
   m.triangles.resize(tree->triangles);
-  Flattener{refs, positions, indices, m}.write(tree, 0, 0, 0);
+  Flattener{refs, positions, indices, arrays(m)}.write(tree, 0, 0, 0);
   set_root_bounds(m, root);
   return m;
 }
 
 // The shared build (see build_mesh_accel in mesh_accel.h). A part's bytes: a
-// flag (1: its subtrees follow; 0: it failed), then per subtree it built, in
-// task order, its three totals (uint32) and its nodes, packets and triangles.
+// flag (1: its subtrees follow; 0: it failed), then a SubtreeHeader per
+// subtree it built, in task order, then their arrays: nodes, packets as
+// their ids (every part fills in the vertices), triangles.
 MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t> indices,
                        const BvhBuildOptions& options, const WorkShare& share) {
   std::vector<PrimRef> refs;
@@ -757,30 +786,39 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
     std::vector<size_t> own;
     for (size_t t = 0; t < tasks.size(); ++t)
       if (owner[t] == share.part) own.push_back(t);
-    std::vector<MeshAccel> flat(own.size());
-    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) {
-      const BuildNode* sub = builder.build_task(tasks[own[i]]);
-      MeshAccel& f = flat[i];
-      f.bvh.nodes.resize(sub->nodes);
-      f.packets.resize(sub->packets);
-      f.triangles.resize(sub->triangles);
-      Flattener{refs, positions, indices, f}.write(sub, 0, 0, 0);
-    });
-    size_t bytes = 1;
-    for (const MeshAccel& f : flat)
-      bytes += 3 * sizeof(uint32_t) + f.bvh.nodes.size() * sizeof(WideBvhNode) +
-               f.packets.size() * sizeof(TrianglePacket) + f.triangles.size() * sizeof(uint32_t);
-    mine.reserve(bytes);
-    mine.push_back(std::byte{1});
-    for (MeshAccel& f : flat) {
-      const uint32_t totals[3] = {uint32_t(f.bvh.nodes.size()), uint32_t(f.packets.size()),
-                                  uint32_t(f.triangles.size())};
-      append_bytes(mine, totals, sizeof totals);
-      append_bytes(mine, f.bvh.nodes.data(), f.bvh.nodes.size() * sizeof(WideBvhNode));
-      append_bytes(mine, f.packets.data(), f.packets.size() * sizeof(TrianglePacket));
-      append_bytes(mine, f.triangles.data(), f.triangles.size() * sizeof(uint32_t));
-      f = MeshAccel{};
+    std::vector<const BuildNode*> built(own.size());
+    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) { built[i] = builder.build_task(tasks[own[i]]); });
+    // The flag, the headers, then each subtree's arrays, flattened in place,
+    // each from a 64-byte boundary of memory (WideBvhNode's alignment).
+    const size_t header_bytes = 1 + own.size() * sizeof(SubtreeHeader);
+    constexpr size_t align = alignof(WideBvhNode);
+    size_t most = header_bytes + align;
+    for (const BuildNode* b : built)
+      most += size_t(b->nodes) * sizeof(WideBvhNode) + size_t(b->packets) * packet_ids_size +
+              size_t(b->triangles) * sizeof(uint32_t) + 3 * align;
+    mine.resize(most);
+    const uintptr_t base = reinterpret_cast<uintptr_t>(mine.data());
+    auto aligned = [&](size_t at) { return size_t((base + at + align - 1) / align * align - base); };
+    std::vector<SubtreeHeader> headers(own.size());
+    size_t at = header_bytes;
+    for (size_t i = 0; i < own.size(); ++i) {
+      SubtreeHeader& h = headers[i];
+      h = {built[i]->nodes, built[i]->packets, built[i]->triangles, 0, 0, 0, 0};
+      h.node_at = aligned(at);
+      h.packet_at = aligned(h.node_at + size_t(h.nodes) * sizeof(WideBvhNode));
+      h.triangle_at = aligned(h.packet_at + size_t(h.packets) * packet_ids_size);
+      at = h.triangle_at + size_t(h.triangles) * sizeof(uint32_t);
     }
+    mine.resize(at);  // smaller: the data stay where they are
+    mine[0] = std::byte{1};
+    if (!headers.empty()) std::memcpy(mine.data() + 1, headers.data(), headers.size() * sizeof(SubtreeHeader));
+    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) {
+      const SubtreeHeader& h = headers[i];
+      const FlatArrays out{reinterpret_cast<WideBvhNode*>(mine.data() + h.node_at), nullptr,
+                           reinterpret_cast<uint32_t*>(mine.data() + h.packet_at),
+                           reinterpret_cast<uint32_t*>(mine.data() + h.triangle_at)};
+      Flattener{refs, positions, indices, out}.write(built[i], 0, 0, 0);
+    });
   } catch (...) {
     failure = std::current_exception();
     mine.assign(1, std::byte{0});
@@ -796,28 +834,20 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
   if (refs.empty()) return m;
   // Each task's subtree from its part's bytes, and a stand-in node for it.
   std::vector<FlatSubtree> received(tasks.size());
-  std::vector<size_t> at(share.parts, 1);
+  std::vector<size_t> seen(share.parts, 0);  // subtrees read from each part
   for (size_t t = 0; t < tasks.size(); ++t) {
     const std::vector<std::byte>& b = all[owner[t]];
-    size_t& pos = at[owner[t]];
-    FlatSubtree& s = received[t];
-    uint32_t totals[3];
-    if (b.size() - pos < sizeof totals) throw std::logic_error("build_mesh_accel: a part's bytes end early");
-    std::memcpy(totals, b.data() + pos, sizeof totals);
-    pos += sizeof totals;
-    s.nodes = totals[0];
-    s.packets = totals[1];
-    s.triangles = totals[2];
-    const size_t need = size_t(s.nodes) * sizeof(WideBvhNode) + size_t(s.packets) * sizeof(TrianglePacket) +
-                        size_t(s.triangles) * sizeof(uint32_t);
-    if (b.size() - pos < need) throw std::logic_error("build_mesh_accel: a part's bytes end early");
-    s.node_bytes = b.data() + pos;
-    s.packet_bytes = s.node_bytes + size_t(s.nodes) * sizeof(WideBvhNode);
-    s.triangle_bytes = s.packet_bytes + size_t(s.packets) * sizeof(TrianglePacket);
-    pos += need;
+    const size_t k = seen[owner[t]]++;
+    SubtreeHeader h;
+    if (b.size() < 1 + (k + 1) * sizeof h) throw std::logic_error("build_mesh_accel: a part's bytes end early");
+    std::memcpy(&h, b.data() + 1 + k * sizeof h, sizeof h);
+    if (h.node_at > b.size() || (b.size() - h.node_at) / sizeof(WideBvhNode) < h.nodes || h.packet_at > b.size() ||
+        (b.size() - h.packet_at) / packet_ids_size < h.packets || h.triangle_at > b.size() ||
+        (b.size() - h.triangle_at) / sizeof(uint32_t) < h.triangles)
+      throw std::logic_error("build_mesh_accel: a part's bytes end early");
+    received[t] = {
+        h.nodes, h.packets, h.triangles, b.data() + h.node_at, b.data() + h.packet_at, b.data() + h.triangle_at};
   }
-  for (int p = 0; p < share.parts; ++p)
-    if (at[p] != all[p].size()) throw std::logic_error("build_mesh_accel: a part sent more bytes than its subtrees");
   std::deque<BuildNode> stand_ins;
   for (size_t t = 0; t < tasks.size(); ++t) {
     BuildNode& n = stand_ins.emplace_back();
@@ -833,7 +863,7 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
   m.bvh.nodes.resize(tree->nodes);
   m.packets.resize(tree->packets);
   m.triangles.resize(tree->triangles);
-  Flattener{refs, positions, indices, m, received}.write(tree, 0, 0, 0);
+  Flattener{refs, positions, indices, arrays(m), received}.write(tree, 0, 0, 0);
   set_root_bounds(m, root);
   return m;
 }
