@@ -150,10 +150,12 @@ struct BuildNode {
 };
 
 // A node of a shared build's top whose subtree one part builds: the range
-// and split make_child had for it, and the child slot that points to it.
+// make_child had for it (with its split, when known: a range of more than
+// max_leaf_ items is a node whatever its split, which its builder finds), and
+// the child slot that points to it.
 struct SubtreeTask {
   Range range;
-  Split split;
+  std::optional<Split> split;
   int depth = 0;
   BuildChild* slot = nullptr;
 };
@@ -205,7 +207,7 @@ class MeshBuilder {
         if (tasks[t].range.count() > tasks[largest].range.count()) largest = t;
       SubtreeTask task = tasks[largest];
       std::vector<SubtreeTask> below;
-      BuildNode* n = open_top(task.range, task.split, task.depth, below);
+      BuildNode* n = open_top(task.range, split_of(task), task.depth, below);
       task.slot->node = n;
       top.push_back(n);
       tasks.erase(tasks.begin() + std::ptrdiff_t(largest));
@@ -231,7 +233,7 @@ class MeshBuilder {
   }
 
   // The subtree of a task, as make_child would build it below its slot.
-  BuildNode* build_task(const SubtreeTask& t) { return build_node(t.range, t.split, t.depth); }
+  BuildNode* build_task(const SubtreeTask& t) { return build_node(t.range, split_of(t), t.depth); }
 
   // The totals of a top node from its children's (stand-ins included).
   void refinish(BuildNode* n) const { finish(n); }
@@ -259,21 +261,29 @@ class MeshBuilder {
   }
 
   // A node opened as build_node opens it, whose children are made as
-  // make_child makes them but for the building below: those are left as
-  // tasks (appended in child order).
+  // make_child makes them but for the nodes below: those are left as tasks
+  // (appended in child order), their splits too when they are sure to be
+  // nodes (the top every part makes stays small).
   BuildNode* open_top(const Range& r, const Split& s, int depth, std::vector<SubtreeTask>& tasks) {
     Range child_ranges[bvh_width];
     const int k = open_node(r, s, depth, child_ranges);
     BuildNode* n = new_node();
     n->n = k;
-    Split splits[bvh_width];
-    bool leaves[bvh_width];
-    tbb::parallel_for(0, k,
-                      [&](int i) { leaves[i] = leaf_or_split(child_ranges[i], depth + 1, n->child[i], splits[i]); });
-    for (int i = 0; i < k; ++i)
-      if (!leaves[i]) tasks.push_back({child_ranges[i], splits[i], depth + 1, &n->child[i]});
+    for (int i = 0; i < k; ++i) {
+      BuildChild& c = n->child[i];
+      Split split;
+      if (child_ranges[i].count() > uint32_t(max_leaf_)) {
+        set_bounds(c, child_ranges[i].geom);
+        tasks.push_back({child_ranges[i], std::nullopt, depth + 1, &c});
+      } else if (!leaf_or_split(child_ranges[i], depth + 1, c, split)) {
+        tasks.push_back({child_ranges[i], split, depth + 1, &c});
+      }
+    }
     return n;
   }
+
+  // The split make_child finds for a task's range (binning it for partition).
+  Split split_of(const SubtreeTask& t) { return t.split ? *t.split : find_split(t.range, t.depth); }
 
   static void set_bounds(BuildChild& c, const Box& b) {
     float l[4], h[4];
