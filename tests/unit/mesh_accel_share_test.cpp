@@ -6,10 +6,10 @@
 // coincident, tiny, empty, and ones under the threshold (no exchange).
 #include "rayform/accel/mesh_accel.h"
 #include "rayform/scene/procedural_mesh.h"
+#include "test_work_share.h"
 
 #include <gtest/gtest.h>
 
-#include <barrier>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -21,39 +21,7 @@
 namespace rayform {
 namespace {
 
-// An all-gather among threads: each part leaves its bytes in its slot, waits
-// for all, copies every slot, and waits again before the slots are reused.
-class ThreadExchange {
- public:
-  explicit ThreadExchange(int parts) : parts_(parts), barrier_(parts), slots_(parts), calls_(parts, 0), sent_(parts) {}
-
-  // fail_part's bytes are replaced by a failed part's (a single 0 byte).
-  WorkShare share(int part, int fail_part = -1) {
-    WorkShare s;
-    s.part = part;
-    s.parts = parts_;
-    s.exchange = [this, part, fail_part](std::vector<std::byte> mine) {
-      if (part == fail_part) mine.assign(1, std::byte{0});
-      ++calls_[part];
-      sent_[part] = mine.size();
-      slots_[part] = std::move(mine);
-      barrier_.arrive_and_wait();
-      std::vector<std::vector<std::byte>> all = slots_;
-      barrier_.arrive_and_wait();
-      return all;
-    };
-    return s;
-  }
-  int calls(int part) const { return calls_[part]; }
-  size_t sent(int part) const { return sent_[part]; }
-
- private:
-  int parts_;
-  std::barrier<> barrier_;
-  std::vector<std::vector<std::byte>> slots_;
-  std::vector<int> calls_;
-  std::vector<size_t> sent_;
-};
+using test::ThreadExchange;
 
 template <class T>
 bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
