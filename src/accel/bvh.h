@@ -46,7 +46,8 @@ struct BvhBuildOptions {
   // build_mesh_accel with a WorkShare: meshes of at least this many triangles
   // are built shared among its parts (smaller ones whole by each part: the
   // exchange copies the arrays, and the parts wait for each other there).
-  size_t share_min_triangles = size_t(1) << 16;
+  // Measured over 2 MPI ranks: a 16k-triangle mesh gains nothing, 32k 18%.
+  size_t share_min_triangles = size_t(1) << 15;
 };
 
 // Builds a BVH; primitives with empty bounds are left out. Deterministic.

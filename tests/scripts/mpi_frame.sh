@@ -5,8 +5,8 @@
 # the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
 # own command line too), an asset, a glass scene with --spp 16 --shadows
 # --bounces 3, and a mesh large enough for its BVH to be built shared among
-# the ranks (BvhBuildOptions::share_min_triangles: 65536); --stats shows each rank's share of the tiles, which add up to
-# the frame's.
+# the ranks (BvhBuildOptions::share_min_triangles: 32768); --stats shows each
+# rank's share of the tiles, which add up to the frame's.
 source "$(dirname "$0")/lib.sh"
 require_mpi
 require_shared
