@@ -8,6 +8,7 @@
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,7 +36,7 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
                        const BvhBuildOptions& options, const WorkShare& share) {
   std::vector<PrimRef> refs;
   Range root;
-  MeshBuilder builder(refs, options);
+  std::optional<MeshBuilder> builder;  // made in the try below: its allocations may fail too
   std::vector<BuildNode*> top;
   std::vector<SubtreeTask> tasks;
   std::vector<int> owner;
@@ -45,13 +46,14 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
   // the one exchange, which tells the others.
   try {
     root = triangle_refs(positions, indices, refs);
-    if (!refs.empty()) builder.build_top(root, share.parts, top, tasks);
+    builder.emplace(refs, options);
+    if (!refs.empty()) builder->build_top(root, share.parts, top, tasks);
     owner = MeshBuilder::assign_tasks(tasks, share.parts);
     std::vector<size_t> own;
     for (size_t t = 0; t < tasks.size(); ++t)
       if (owner[t] == share.part) own.push_back(t);
     std::vector<const BuildNode*> built(own.size());
-    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) { built[i] = builder.build_task(tasks[own[i]]); });
+    tbb::parallel_for(size_t(0), own.size(), [&](size_t i) { built[i] = builder->build_task(tasks[own[i]]); });
     // The flag, the headers, then each subtree's arrays, flattened in place,
     // each from a 64-byte boundary of memory (WideBvhNode's alignment).
     const size_t header_bytes = 1 + own.size() * sizeof(SubtreeHeader);
@@ -121,7 +123,7 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
     n.triangles = received[t].triangles;
     tasks[t].slot->node = &n;
   }
-  for (auto it = top.rbegin(); it != top.rend(); ++it) builder.refinish(*it);  // children before parents
+  for (auto it = top.rbegin(); it != top.rend(); ++it) builder->refinish(*it);  // children before parents
   const BuildNode* tree = top.front();
   check_packets(tree);
   m.bvh.nodes.resize(tree->nodes);
