@@ -199,10 +199,12 @@ void run_render_job(const RenderJob& job) {
   // 1 ms here): start them on a helper thread while the scene loads.
   std::jthread start_workers;
   if (job.render.threads != 1) start_workers = std::jthread([] { tbb::parallel_for(0, 2, [](int) {}); });
-  // Under mpirun every rank loads (sharing a large OBJ's parse) and prepares the scene, then renders a share of the
-  // frame.
+  // Under mpirun every rank loads the scene (sharing a large OBJ's parse) and
+  // prepares it (sharing the BVH builds of large meshes), then renders a share
+  // of the frame.
   const Ranks& rank = ranks();
   const bool spread = job.spread_frame && rank.distributed();
+  const WorkShare share_ranks = spread ? rank_work_share() : WorkShare{};
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
   const bool quiet = job.quiet || (spread && !rank.root());
   auto t_load = clock::now();
@@ -213,12 +215,8 @@ void run_render_job(const RenderJob& job) {
   try {
     // A spread frame's ranks share the load's work (a large OBJ's parse):
     // every rank must call this, as each does. Batches do not share.
-    WorkShare load_share;
     ReadyOptions ready = ready_options(job);
-    if (spread) {
-      load_share = rank_work_share();
-      ready.load.share = &load_share;
-    }
+    if (spread) ready.load.share = &share_ranks;
     loaded = job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready) : load_ready_scene(job.input, ready);
     if (!quiet) {
       for (const std::string& w : loaded.warnings) warn(w);
@@ -233,14 +231,29 @@ void run_render_job(const RenderJob& job) {
         for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
     }
     load_s = seconds_since(t_load);
-    auto t_prepare = clock::now();
-    PrepareOptions po;
-    po.limits = job.limits;
-    prepared = prepare_scene(loaded.scene, po);
-    prepare_s = seconds_since(t_prepare);
   } catch (...) {
     if (!spread) throw;
     failure = std::current_exception();
+  }
+  // The shared builds in prepare are collective: the ranks go on to them only
+  // when every one of them has loaded the scene.
+  bool all_loaded = !failure;
+  if (spread) {
+    const std::vector<bool> loaded_ok = gather_flags(!failure);
+    all_loaded = std::find(loaded_ok.begin(), loaded_ok.end(), false) == loaded_ok.end();
+  }
+  if (all_loaded) {
+    try {
+      auto t_prepare = clock::now();
+      PrepareOptions po;
+      po.limits = job.limits;
+      if (spread) po.share = &share_ranks;
+      prepared = prepare_scene(loaded.scene, po);
+      prepare_s = seconds_since(t_prepare);
+    } catch (...) {
+      if (!spread) throw;
+      failure = std::current_exception();
+    }
   }
   if (spread) agree_scene_ready(failure);
   const ColorOutput color{loaded.color.scene, job.color};

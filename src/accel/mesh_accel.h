@@ -11,6 +11,7 @@
 
 #include "rayform/accel/bvh.h"
 #include "rayform/geometry/triangle_intersect.h"
+#include "rayform/scene/work_share.h"
 
 #include <cstdint>
 #include <span>
@@ -78,8 +79,19 @@ struct MeshAccel {
 // small ranges), options.traversal_cost the cost of a node relative to a
 // packet test. Throws std::length_error for a mesh too large for the
 // references (2^31 triangles or 2^27 packets).
+//
+// With a shared `share` (share->parts > 1) and a mesh of at least
+// options.share_min_triangles triangles, the build is shared among the parts:
+// every part computes the triangle boxes and the top of the tree (the root
+// node, opened further where its subtrees would balance badly over the
+// parts), builds the subtrees below it assigned to its part, and one
+// share->exchange gives every part the others' subtrees, from which it
+// assembles the very MeshAccel an unshared build gives, byte for byte.
+// Collective: every part must call it with the same mesh and options, and
+// make its shared builds in the same order. A part that fails still takes
+// part in the exchange; then every part throws (the failed one its own error).
 MeshAccel build_mesh_accel(std::span<const vec3> positions, std::span<const uint32_t> indices,
-                           const BvhBuildOptions& options = {});
+                           const BvhBuildOptions& options = {}, const WorkShare* share = nullptr);
 
 // A hit on a mesh triangle: its original index (indices[3 * triangle + k] are
 // its vertices) and its barycentrics (the hit point is b0*p0 + b1*p1 + b2*p2,

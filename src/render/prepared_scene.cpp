@@ -86,10 +86,12 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       },
       options.limits.instances);
 
-  // Build each used mesh once, however often it is instanced.
+  // Build each used mesh once, however often it is instanced; in mesh order,
+  // which makes the shared builds (collective) the same on every part.
   p.meshes.resize(scene.meshes.size());
   for (size_t i = 0; i < scene.meshes.size(); ++i)
-    if (mesh_used[i]) p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh);
+    if (mesh_used[i])
+      p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
 
   // Top level over bounded instances; planes stay outside.
   std::vector<Bounds3> bounds(p.instances.size());

@@ -63,6 +63,11 @@ PreparedLight prepare_light(const Light& light);
 struct PrepareOptions {
   BvhBuildOptions bvh;
   Limits limits{};  // instances: checked before flattening; texture_texels: before decoding
+  // When shared (the ranks of a frame spread over MPI ranks), the BVHs of
+  // meshes of at least bvh.share_min_triangles are built shared among its
+  // parts (build_mesh_accel), one after another in mesh order: every part
+  // must prepare the same scene with the same options.
+  const WorkShare* share = nullptr;
 };
 
 struct PreparedScene {

@@ -4,8 +4,10 @@
 # the same options: colour and every AOV (depth, normals, albedo, coverage as
 # the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
 # own command line too), an asset, a glass scene with --spp 16 --shadows
-# --bounces 3, and an OBJ large enough for the ranks to share its parse;
-# --stats shows each rank's share of the tiles, which add up to the frame's.
+# --bounces 3, and an OBJ large enough for the ranks to share its parse and
+# its BVH build (ObjReadOptions::share, BvhBuildOptions::share_min_triangles:
+# 32768); --stats shows each rank's share of the tiles, which add up to the
+# frame's.
 source "$(dirname "$0")/lib.sh"
 require_mpi
 require_shared
@@ -16,7 +18,8 @@ fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
 
 course=$RAYFORM_SHARED/course
 # An OBJ text of more than 1 MiB, whose parse the ranks share (ObjReadOptions::share):
-# a wavy grid of triangles and quads in groups.
+# a wavy grid of triangles and quads in groups, 95922 triangles once split: over the
+# threshold at which the ranks share a mesh's BVH build too (build_mesh_accel with a WorkShare).
 awk -v n=220 'BEGIN {
   for (y = 0; y < n; y++) for (x = 0; x < n; x++)
     printf "v %.5f %.5f %.5f\n", x / n - 0.5, y / n - 0.5, 0.05 * sin(x * 0.3) * cos(y * 0.2)
@@ -40,8 +43,8 @@ cases=(
   # Two-pass sampling: the first pass covers the whole image on every rank, the second is shared.
   "grid-filter|-input $course/2012-a5/scene10_sphere.txt -size 61 47 -jitter -filter -shadows -quiet|-output @c.png"
   "adaptive|render $course/2012-a5/scene10_sphere.txt --size 61x47 --target-error 0.01 --shadows -q|-o @c.png --albedo @a.png"
-  # A large OBJ: the ranks share its parse, and the frame is still the one-process frame.
-  "obj-shared|render grid.obj --size 72x54 --orbit 20,50 -q|-o @c.png --normals @n.png --albedo @a.png"
+  # A large OBJ: the ranks share its parse and its BVH build, and the frame is still the one-process frame.
+  "obj-shared|render grid.obj --size 72x54 --orbit 20,50 --spp 4 -q|-o @c.png --normals @n.png --albedo @a.png --depth 1:6:@d.png"
 )
 for c in "${cases[@]}"; do
   IFS='|' read -r name args outs <<<"$c"

@@ -8,11 +8,14 @@
 #include "rayform/scene/procedural_mesh.h"
 #include "test_paths.h"
 #include "test_scenes.h"
+#include "test_work_share.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <thread>
 
 namespace rayform {
 namespace {
@@ -79,6 +82,49 @@ TEST(Prepare, OnlyUsedMeshesAreBuilt) {
   EXPECT_TRUE(p.meshes[0].bvh.nodes.empty());
   EXPECT_EQ(p.meshes[1].triangles.size(), 12u);
   EXPECT_TRUE(p.meshes[2].bvh.nodes.empty());
+}
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+TEST(Prepare, SharedPreparesBuildTheLargeUsedMeshesSharedInMeshOrder) {
+  // Meshes 0 and 3 are used and over the threshold, 1 is used and under it,
+  // 2 is over it but unused: two shared builds, the same on every part.
+  Scene s =
+      scene_with({shape_node(ShapeKind::mesh, 3), shape_node(ShapeKind::mesh, 1), shape_node(ShapeKind::mesh, 0)});
+  s.meshes.push_back(make_bumpy_torus(12000, 2));
+  s.meshes.push_back(make_icosphere(3));
+  s.meshes.push_back(make_bumpy_torus(8000, 3));
+  s.meshes.push_back(make_grid(60, 50));
+  PrepareOptions o;
+  o.bvh.share_min_triangles = 5000;
+  const PreparedScene whole = prepare_scene(s, o);
+  for (int parts : {2, 3}) {
+    test::ThreadExchange ex(parts);
+    std::vector<PreparedScene> prepared(parts);
+    std::vector<std::thread> threads;
+    for (int p = 0; p < parts; ++p)
+      threads.emplace_back([&, p] {
+        const WorkShare share = ex.share(p);
+        PrepareOptions po = o;
+        po.share = &share;
+        prepared[p] = prepare_scene(s, po);
+      });
+    for (std::thread& t : threads) t.join();
+    for (int p = 0; p < parts; ++p) {
+      EXPECT_EQ(ex.calls(p), 2) << parts << " parts: part " << p;
+      ASSERT_EQ(prepared[p].meshes.size(), 4u);
+      for (size_t m = 0; m < 4; ++m) {
+        EXPECT_TRUE(same_bytes(whole.meshes[m].bvh.nodes, prepared[p].meshes[m].bvh.nodes)) << "mesh " << m;
+        EXPECT_TRUE(same_bytes(whole.meshes[m].packets, prepared[p].meshes[m].packets)) << "mesh " << m;
+        EXPECT_EQ(whole.meshes[m].triangles, prepared[p].meshes[m].triangles) << "mesh " << m;
+      }
+      EXPECT_TRUE(prepared[p].meshes[2].bvh.nodes.empty()) << "an unused mesh was built";
+      EXPECT_EQ(prepared[p].meshes[0].triangles.size(), s.meshes[0].triangle_count());
+    }
+  }
 }
 
 Texture embedded_texture() {
