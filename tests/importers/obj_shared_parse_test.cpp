@@ -5,13 +5,13 @@
 // on every part, and what throws on one part throws on all (none is left
 // waiting in the exchange).
 #include "importers/obj_test_texts.h"
+#include "test_work_share.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
 #include "rayform/scene/error.h"
 #include "rayform/scene/work_share.h"
 
 #include <gtest/gtest.h>
 
-#include <barrier>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -21,35 +21,7 @@ namespace rayform {
 namespace {
 
 using test::NoMaterials;
-
-// An exchange among `parts` threads: each puts its bytes in its slot, waits
-// for all, copies every slot, and waits again before a slot may be reused.
-class ThreadExchange {
- public:
-  explicit ThreadExchange(int parts) : parts_(parts), slots_(size_t(parts)), calls_(size_t(parts), 0), sync_(parts) {}
-
-  WorkShare share(int part) {
-    WorkShare s;
-    s.part = part;
-    s.parts = parts_;
-    s.exchange = [this, part](std::vector<std::byte> mine) {
-      ++calls_[size_t(part)];
-      slots_[size_t(part)] = std::move(mine);
-      sync_.arrive_and_wait();
-      std::vector<std::vector<std::byte>> all = slots_;
-      sync_.arrive_and_wait();
-      return all;
-    };
-    return s;
-  }
-  int calls(int part) const { return calls_[size_t(part)]; }
-
- private:
-  int parts_;
-  std::vector<std::vector<std::byte>> slots_;
-  std::vector<int> calls_;
-  std::barrier<> sync_;
-};
+using test::ThreadExchange;
 
 struct PartResult {
   bool chunked = false;
