@@ -2,15 +2,14 @@
 
 #include "rayform/importers/course_txt/course_mesh.h"
 #include "rayform/importers/course_txt/course_tokenizer.h"
+#include "rayform/importers/file_bytes.h"
 #include "rayform/scene/error.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 namespace rayform {
 namespace fs = std::filesystem;
@@ -571,11 +570,8 @@ CourseScene parse_course_scene(std::string_view text, const std::string& path, c
 }
 
 CourseScene read_course_scene(const std::string& path, const CourseReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open scene file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_course_scene(ss.str(), path, options);
+  const FileBytes file(path, "scene file");
+  return parse_course_scene(file.view(), path, options);
 }
 
 }  // namespace rayform
