@@ -1,9 +1,10 @@
 // This process's place in an MPI job, and the few operations across ranks
 // that the distributed drivers (distributed_frame.h, render_batch.h) need.
 // MPI is started only when the process was launched by mpirun (or srun with
-// PMIx): a rayform started on its own, or built without MPI (RAYFORM_MPI
-// off), is rank 0 of 1 and every operation here is local. The interface has
-// no MPI type, so nothing outside the mpi_*.cpp files includes <mpi.h>.
+// PMIx), through the MPI plugin (mpi_plugin.h): a rayform started on its own,
+// or built without MPI (RAYFORM_MPI off), is rank 0 of 1, loads no MPI
+// library, and every operation here is local. The interface has no MPI type:
+// only the plugin includes <mpi.h>.
 #pragma once
 
 #include <stdexcept>
@@ -29,6 +30,8 @@ const Ranks& ranks();
 // Collective (every rank calls them, in the same order):
 // Each rank's flag, by rank, on every rank.
 std::vector<bool> gather_flags(bool flag);
+// Each rank's number, by rank, on every rank.
+std::vector<long long> gather_numbers(long long value);
 // The sum of every rank's `value`, on every rank.
 long long sum_over_ranks(long long value);
 // Every rank's text, by rank, at rank 0 (elsewhere empty).

@@ -21,7 +21,13 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -132,6 +138,34 @@ void agree_scene_ready(const std::exception_ptr& failure) {
   throw ReportedElsewhere("another rank failed");
 }
 
+// The ranks of a spread frame read one file before any shared work: a large
+// OBJ's parse is exchanged among them, and a rank that could not open the
+// file (a path missing on its node) or read another copy would leave the
+// others waiting in that exchange. Each rank gives the file's size (or
+// -errno when it cannot open it); unless all agree, every rank stops before
+// reading, rank 0 naming the first rank that differs. Ranks that all fail
+// alike go on to the load, which fails on each before any exchange and says why.
+void agree_on_input(const std::string& input) {
+  long long seen = 0;
+  if (const int fd = ::open(input.c_str(), O_RDONLY | O_CLOEXEC); fd < 0) {
+    seen = -errno;
+  } else {
+    struct stat st {};
+    seen = ::fstat(fd, &st) == 0 ? (long long)st.st_size : -errno;
+    ::close(fd);
+  }
+  const std::vector<long long> all = gather_numbers(seen);
+  const auto other = std::find_if(all.begin(), all.end(), [&](long long s) { return s != all[0]; });
+  if (other == all.end()) return;
+  auto what = [](long long s) {
+    return s < 0 ? std::string("cannot open it (") + std::strerror(int(-s)) + ")"
+                 : "reads " + std::to_string(s) + " bytes";
+  };
+  if (!ranks().root()) throw ReportedElsewhere("rank 0 reports the error");
+  throw Error(input + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(*other) +
+              ", rank 0 " + what(all[0]) + ": every rank must read the same file; nothing written");
+}
+
 }  // namespace
 
 LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, ready_options(job).load); }
@@ -207,6 +241,7 @@ void run_render_job(const RenderJob& job) {
   const WorkShare share_ranks = spread ? rank_work_share() : WorkShare{};
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
   const bool quiet = job.quiet || (spread && !rank.root());
+  if (spread) agree_on_input(job.input);
   auto t_load = clock::now();
   ReadyScene loaded;
   PreparedScene prepared;

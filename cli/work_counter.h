@@ -2,7 +2,7 @@
 // no other call on any rank returns, 0, 1, 2, ... in the order the calls
 // reach it. It hands out work dynamically: a rank (or thread) that finishes
 // early takes more. Under MPI it is one integer in an RMA window on rank 0,
-// advanced with MPI_Fetch_and_op; otherwise a local atomic.
+// advanced with MPI_Fetch_and_op (mpi_plugin_module.cpp); otherwise a local atomic.
 #pragma once
 
 #include <memory>

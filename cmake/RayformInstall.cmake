@@ -3,6 +3,7 @@
 #   <prefix>/bin/rayform                           the command-line program
 #   <prefix>/lib/librayform_core.a, librayform_importers.a
 #   <prefix>/lib/rayform/librayform_oiio.so        the OpenImageIO plugin (dlopen'ed)
+#   <prefix>/lib/rayform/librayform_mpi.so         the MPI plugin (dlopen'ed under mpirun; with RAYFORM_MPI)
 #   <prefix>/include/rayform/<folder>/*.h          src/<folder>/*.h
 #   <prefix>/include/rayform/importers/...         importers/**/*.h, less the readers' internals
 #   <prefix>/lib/cmake/rayform/                    rayformConfig.cmake, rayformConfigVersion.cmake,
@@ -21,6 +22,9 @@ install(TARGETS rayform_core rayform_importers EXPORT rayformTargets
 install(TARGETS rayform_oiio LIBRARY DESTINATION ${RAYFORM_INSTALL_PLUGINDIR})
 if(TARGET rayform)
   install(TARGETS rayform RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  if(TARGET rayform_mpi)
+    install(TARGETS rayform_mpi LIBRARY DESTINATION ${RAYFORM_INSTALL_PLUGINDIR})
+  endif()
 endif()
 
 # Headers: every header of the libraries, under the path the sources include

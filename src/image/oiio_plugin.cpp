@@ -4,16 +4,13 @@
 
 #include "rayform/image/oiio_plugin_abi.h"
 #include "rayform/scene/error.h"
+#include "rayform/scene/plugin_library.h"
 
 #include <dlfcn.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
-#include <vector>
 
 namespace rayform {
-namespace fs = std::filesystem;
 namespace {
 
 struct Plugin {
@@ -28,46 +25,15 @@ const Plugin& plugin() {
   static std::once_flag once;
   static std::string failure;
   std::call_once(once, [] {
-    std::vector<fs::path> candidates;
-    if (const char* e = std::getenv("RAYFORM_OIIO_PLUGIN"); e && *e) candidates.push_back(e);
-    std::error_code ec;
-    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-      candidates.push_back(exe.parent_path() / "librayform_oiio.so");
-      candidates.push_back(exe.parent_path() / "../lib/rayform/librayform_oiio.so");
-    }
-    // Compiled in (src/CMakeLists.txt), for programs that link the library
-    // but do not live in <prefix>/bin or the build tree: the install folder,
-    // then the build's.
-#ifdef RAYFORM_PLUGIN_INSTALL_DIR
-    candidates.push_back(fs::path(RAYFORM_PLUGIN_INSTALL_DIR) / "librayform_oiio.so");
-#endif
-#ifdef RAYFORM_PLUGIN_DIR
-    candidates.push_back(fs::path(RAYFORM_PLUGIN_DIR) / "librayform_oiio.so");
-#endif
-    std::string tried;
-    for (const fs::path& c : candidates) {
-      if (!fs::exists(c, ec)) {
-        tried.append(" ").append(c.string());
-        continue;
-      }
-      void* h = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!h) {
-        failure = dlerror();
-        continue;
-      }
-      p.can_write = reinterpret_cast<rayform_oiio_can_write_fn>(dlsym(h, "rayform_oiio_can_write"));
-      p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read_as"));
-      p.free = reinterpret_cast<rayform_oiio_free_fn>(dlsym(h, "rayform_oiio_free"));
-      p.write = reinterpret_cast<rayform_oiio_write_fn>(dlsym(h, "rayform_oiio_write"));
-      if (p.can_write && p.read && p.free && p.write) return;
-      failure = c.string();
-      failure.append(" lacks the rayform_oiio_* functions");
-      p = {};
-    }
-    if (failure.empty())
-      failure =
-          std::string("librayform_oiio.so not found (looked at").append(tried).append("; set RAYFORM_OIIO_PLUGIN)");
+    void* h = open_plugin("librayform_oiio.so", "RAYFORM_OIIO_PLUGIN", &failure);
+    if (!h) return;
+    p.can_write = reinterpret_cast<rayform_oiio_can_write_fn>(dlsym(h, "rayform_oiio_can_write"));
+    p.read = reinterpret_cast<rayform_oiio_read_fn>(dlsym(h, "rayform_oiio_read_as"));
+    p.free = reinterpret_cast<rayform_oiio_free_fn>(dlsym(h, "rayform_oiio_free"));
+    p.write = reinterpret_cast<rayform_oiio_write_fn>(dlsym(h, "rayform_oiio_write"));
+    if (p.can_write && p.read && p.free && p.write) return;
+    failure = "librayform_oiio.so lacks the rayform_oiio_* functions";
+    p = {};
   });
   if (!p.write) throw Error("OpenImageIO plugin unavailable: " + failure);
   return p;

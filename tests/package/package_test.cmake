@@ -127,6 +127,7 @@ elseif(MODE STREQUAL "install")
   run(${CMAKE_COMMAND} "${shared_build}" -DRAYFORM_INSTALL=ON -DRAYFORM_CLI=ON)
   run(${CMAKE_COMMAND} --build "${shared_build}" -j ${JOBS})
   run(${CMAKE_COMMAND} --install "${shared_build}")
+  file(STRINGS "${shared_build}/CMakeCache.txt" with_mpi REGEX "^RAYFORM_MPI:BOOL=ON$")
   # Nothing may refer to the build tree any more (the plugin is found in the
   # prefix, where the CLI and the compiled-in install folder point).
   file(REMOVE_RECURSE "${shared_build}")
@@ -143,6 +144,24 @@ elseif(MODE STREQUAL "install")
   run("${prefix}/bin/rayform" render "${SOURCE_DIR}/scenes/default.txt" -o "${WORK}/cli.tif" --size 32x24)
   if(NOT EXISTS "${WORK}/cli.tif")
     message(FATAL_ERROR "the installed rayform did not write ${WORK}/cli.tif")
+  endif()
+  # Built with MPI: the MPI plugin installed beside the OpenImageIO one, and
+  # found there by the installed CLI under mpirun.
+  find_program(mpirun mpirun)
+  if(with_mpi AND mpirun)
+    if(NOT EXISTS "${prefix}/lib/rayform/librayform_mpi.so")
+      message(FATAL_ERROR "not installed: ${prefix}/lib/rayform/librayform_mpi.so")
+    endif()
+    file(REMOVE "${WORK}/cli_mpi.png")
+    # One machine, shared memory only (as tests/scripts/lib.sh's require_mpi).
+    set(ENV{OMPI_MCA_btl} "self,vader")
+    set(ENV{OMPI_MCA_pml} "ob1")
+    set(ENV{OMPI_MCA_plm_rsh_agent} "")
+    run(${mpirun} --allow-run-as-root --oversubscribe -np 2 "${prefix}/bin/rayform" render
+        "${SOURCE_DIR}/scenes/default.txt" -o "${WORK}/cli_mpi.png" --size 32x24 --stats)
+    if(NOT EXISTS "${WORK}/cli_mpi.png")
+      message(FATAL_ERROR "the installed rayform under mpirun did not write ${WORK}/cli_mpi.png")
+    endif()
   endif()
 
   run(${CMAKE_COMMAND} -S "${consumer_src}" -B "${WORK}/consumer" ${common} -DCMAKE_BUILD_TYPE=None

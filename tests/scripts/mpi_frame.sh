@@ -95,5 +95,46 @@ mpi_run 2 render bad.obj -o bad.png >bad.log 2>&1; rc=$?
 [ -e bad.png ] && fail bad-scene "an output was written"
 [ $failures -eq 0 ] && echo "ok   [bad-scene] one message, status 1, no output"
 
+# A rank that cannot open the file the others read (a path missing on its
+# node; here each rank works in its own folder, rank 1's without the OBJ), or
+# reads another copy, stops the job before any shared work, rank 0 naming it:
+# the others must not wait for it in the shared parse's exchange.
+mkdir -p r0 r1 && cp grid.obj r0/
+per_rank_folder() {
+  # shellcheck disable=SC2016  # expanded by each rank's shell
+  timeout 120 mpirun --allow-run-as-root --oversubscribe -np 2 sh -c 'cd "r$OMPI_COMM_WORLD_RANK" && exec "$0" "$@"' \
+    "$RAYFORM_BIN" render grid.obj -o "$PWD/split.png" --size 32x24 -q
+}
+grid_bytes=$(wc -c <grid.obj)
+for copy in missing shorter; do
+  [ $copy = shorter ] && head -c 2000000 grid.obj >r1/grid.obj
+  per_rank_folder >split.log 2>&1; rc=$?
+  [ $rc -eq 1 ] || fail "split-$copy" "exit $rc, expected 1 (124: the ranks waited): $(cat split.log)"
+  case $copy in
+    missing) want="rank 1 of the MPI job cannot open it (No such file or directory), rank 0 reads $grid_bytes bytes" ;;
+    shorter) want="rank 1 of the MPI job reads 2000000 bytes, rank 0 reads $grid_bytes bytes" ;;
+  esac
+  [ "$(grep -c "grid.obj: $want" split.log)" -eq 1 ] || fail "split-$copy" "expected one line '$want': $(cat split.log)"
+  [ -e split.png ] && fail "split-$copy" "an output was written"
+done
+[ $failures -eq 0 ] && echo "ok   [split] a rank that cannot read the others' file stops the job at once, named"
+
+# MPI is a plugin (librayform_mpi.so) opened only under a launcher: a rayform
+# started on its own loads no MPI library, ranks under mpirun do. A plugin that
+# cannot be opened (here: a file that is not one, named by RAYFORM_MPI_PLUGIN)
+# stops the job with one line saying why, status 1, no output.
+LD_DEBUG=files "$RAYFORM_BIN" --version >/dev/null 2>alone.libs || fail plugin "rayform --version failed"
+grep -q 'libmpi\.so' alone.libs && fail plugin "a rayform started on its own loads libmpi"
+LD_DEBUG=files mpi_run 2 --version >ranks.libs 2>&1 || fail plugin "mpirun -np 2 rayform --version failed"
+[ "$(grep -c 'file=libmpi\.so\.[0-9]* \[0\];  needed by .*librayform_mpi\.so' ranks.libs)" -eq 2 ] ||
+  fail plugin "2 ranks did not each load libmpi through librayform_mpi.so: $(grep -c libmpi ranks.libs) lines"
+echo "not a shared library" >not-a-plugin.so
+RAYFORM_MPI_PLUGIN=$PWD/not-a-plugin.so mpi_run 2 render "$course/2012/scene01_plane.txt" -o np.png >np.log 2>&1; rc=$?
+[ $rc -ne 0 ] || fail plugin "a job whose MPI plugin cannot be opened exited 0"
+grep -q '^rayform: error: started by mpirun, but MPI cannot be used: .*not-a-plugin.so' np.log ||
+  fail plugin "no message naming the plugin: $(cat np.log)"
+[ -e np.png ] && fail plugin "an output was written without MPI"
+[ $failures -eq 0 ] && echo "ok   [plugin] MPI loaded by ranks only; a broken plugin stops the job with a message"
+
 echo "$failures failure(s)"
 [ $failures -eq 0 ]

@@ -1,0 +1,137 @@
+// librayform_mpi.so: mpi_plugin_abi.h over MPI's C API. The program opens it
+// (mpi_plugin.cpp) only when mpirun or another MPI launcher started it, so a
+// rayform run on its own does not load libmpi and its libraries (about 2 ms
+// of every start).
+#include "mpi_plugin_abi.h"
+#include "mpi_wait.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+
+namespace {
+
+constexpr uint64_t piece_bytes = uint64_t(1) << 30;  // MPI counts are int
+
+void finalize() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (finalized) return;
+  rayform::cli::barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
+  MPI_Finalize();
+}
+
+struct Counter {
+  MPI_Win window = MPI_WIN_NULL;
+  long long* value = nullptr;  // rank 0's counter
+  std::mutex mutex;            // one MPI call at a time (MPI_THREAD_SERIALIZED)
+};
+
+}  // namespace
+
+extern "C" {
+
+__attribute__((visibility("default"))) int rayform_mpi_version(void) { return RAYFORM_MPI_PLUGIN_VERSION; }
+
+__attribute__((visibility("default"))) int rayform_mpi_start(int* argc, char*** argv, int* rank, int* size, char* error,
+                                                             int error_size) {
+  // Tiles are handed out from the worker threads, one MPI call at a time.
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
+  std::atexit(finalize);
+  if (provided < MPI_THREAD_SERIALIZED) {
+    std::snprintf(error, size_t(error_size),
+                  "this MPI library cannot be called from more than one thread (MPI_THREAD_SERIALIZED): rayform "
+                  "needs it");
+    return 0;
+  }
+  MPI_Comm_rank(MPI_COMM_WORLD, rank);
+  MPI_Comm_size(MPI_COMM_WORLD, size);
+  return 1;
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_abort(void) { MPI_Abort(MPI_COMM_WORLD, 1); }
+
+__attribute__((visibility("default"))) void rayform_mpi_allgather(const void* mine, void* all, uint64_t bytes_each) {
+  MPI_Request request;  // the others may still be loading
+  MPI_Iallgather(mine, int(bytes_each), MPI_BYTE, all, int(bytes_each), MPI_BYTE, MPI_COMM_WORLD, &request);
+  rayform::cli::wait_without_spinning(&request);
+}
+
+__attribute__((visibility("default"))) long long rayform_mpi_sum(long long value) {
+  long long sum = 0;
+  MPI_Request request;  // the others may still be rendering
+  MPI_Iallreduce(&value, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
+  rayform::cli::wait_without_spinning(&request);
+  return sum;
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_broadcast(void* data, uint64_t bytes, int root) {
+  for (uint64_t done = 0; done < bytes; done += piece_bytes) {
+    MPI_Request request;
+    MPI_Ibcast(static_cast<char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, root,
+               MPI_COMM_WORLD, &request);
+    rayform::cli::wait_without_spinning(&request);
+  }
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_send(const void* data, uint64_t bytes, int to, int tag) {
+  for (uint64_t done = 0; done == 0 || done < bytes; done += piece_bytes) {
+    MPI_Request request;  // the receiver may still be rendering
+    MPI_Isend(static_cast<const char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, to, tag,
+              MPI_COMM_WORLD, &request);
+    rayform::cli::wait_without_spinning(&request);
+  }
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_receive(void* data, uint64_t bytes, int from, int tag) {
+  for (uint64_t done = 0; done == 0 || done < bytes; done += piece_bytes) {
+    MPI_Request request;  // the sender may still be rendering
+    MPI_Irecv(static_cast<char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, from, tag,
+              MPI_COMM_WORLD, &request);
+    rayform::cli::wait_without_spinning(&request);
+  }
+}
+
+// One long long in a window on rank 0, which every rank holds a shared lock
+// on (passive target) and advances with MPI_Fetch_and_op. On one node
+// OpenMPI's shared-memory window (osc/sm) makes that an atomic add in shared
+// memory.
+__attribute__((visibility("default"))) void* rayform_mpi_counter_create(void) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  auto* c = new Counter;
+  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(long long)) : 0, sizeof(long long), MPI_INFO_NULL, MPI_COMM_WORLD,
+                   &c->value, &c->window);
+  if (rank == 0) {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, c->window);
+    *c->value = 0;
+    MPI_Win_unlock(0, c->window);
+  }
+  rayform::cli::barrier_without_spinning();  // the counter is 0 before anyone takes a number
+  MPI_Win_lock_all(MPI_MODE_NOCHECK, c->window);
+  return c;
+}
+
+__attribute__((visibility("default"))) long long rayform_mpi_counter_next(void* counter) {
+  auto* c = static_cast<Counter*>(counter);
+  std::lock_guard lock(c->mutex);
+  const long long one = 1;
+  long long got = 0;
+  MPI_Fetch_and_op(&one, &got, MPI_LONG_LONG, 0, 0, MPI_SUM, c->window);
+  MPI_Win_flush(0, c->window);
+  return got;
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_counter_destroy(void* counter) {
+  auto* c = static_cast<Counter*>(counter);
+  rayform::cli::barrier_without_spinning();  // others may be busy with their last tile or render
+  MPI_Win_unlock_all(c->window);
+  MPI_Win_free(&c->window);  // collective: every rank has taken its last number
+  delete c;
+}
+
+}  // extern "C"

@@ -1,0 +1,41 @@
+// rank_work_share.h over MPI (mpi_plugin_abi.h): the exchange gathers every
+// rank's byte count, then broadcasts each rank's bytes from it in turn. The
+// plugin waits without spinning: a rank that finished its part early must not
+// take a core from one still working on its own.
+#include "rank_work_share.h"
+
+#include "mpi_plugin.h"
+#include "ranks.h"
+
+#include <cstdint>
+
+namespace rayform::cli {
+namespace {
+
+std::vector<std::vector<std::byte>> allgather_bytes(std::vector<std::byte> mine) {
+  const Ranks& r = ranks();
+  const uint64_t my_size = mine.size();
+  std::vector<uint64_t> sizes(size_t(r.size), 0);
+  mpi()->allgather(&my_size, sizes.data(), sizeof my_size);
+  std::vector<std::vector<std::byte>> all(size_t(r.size));
+  all[size_t(r.rank)] = std::move(mine);
+  for (int k = 0; k < r.size; ++k) {
+    std::vector<std::byte>& bytes = all[size_t(k)];
+    if (k != r.rank) bytes.resize(sizes[size_t(k)]);
+    mpi()->broadcast(bytes.data(), sizes[size_t(k)], k);
+  }
+  return all;
+}
+
+}  // namespace
+
+WorkShare rank_work_share() {
+  const Ranks& r = ranks();
+  WorkShare share;
+  share.part = r.rank;
+  share.parts = r.size;
+  if (r.distributed()) share.exchange = allgather_bytes;
+  return share;
+}
+
+}  // namespace rayform::cli

@@ -1,0 +1,27 @@
+// work_counter.h: a counter in an MPI window on rank 0 (mpi_plugin_abi.h)
+// when distributed, otherwise a local atomic.
+#include "work_counter.h"
+
+#include "mpi_plugin.h"
+#include "ranks.h"
+
+#include <atomic>
+
+namespace rayform::cli {
+
+struct WorkCounter::Impl {
+  std::atomic<long long> local{0};  // not distributed
+  void* shared = nullptr;           // the plugin's counter
+};
+
+WorkCounter::WorkCounter() : impl_(std::make_unique<Impl>()) {
+  if (ranks().distributed()) impl_->shared = mpi()->counter_create();
+}
+
+WorkCounter::~WorkCounter() {
+  if (impl_->shared) mpi()->counter_destroy(impl_->shared);
+}
+
+long long WorkCounter::next() { return impl_->shared ? mpi()->counter_next(impl_->shared) : impl_->local++; }
+
+}  // namespace rayform::cli
