@@ -75,6 +75,7 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool st
     // The scene of this rank's last turntable frame: the next frame of the
     // same file starts from it instead of reading the file again.
     std::shared_ptr<const LoadedScene> last;
+    std::shared_ptr<MeshAccelCache> last_accels;  // its meshes' BVHs, kept from frame to frame
     std::string last_input;
     for (long long i; (i = counter.next()) < (long long)jobs.size();) {
       RenderJob job = jobs[size_t(i)];
@@ -82,11 +83,15 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool st
       try {
         if (job.orbit && turntable) {
           if (!last || last_input != job.input) {
+            last_accels.reset();
             last.reset();  // one scene in memory at a time
             last = std::make_shared<const LoadedScene>(load_job_scene(job));
+            last_accels = std::make_shared<MeshAccelCache>();
+            last_accels->source = &last->scene;
             last_input = job.input;
           }
           job.preloaded = last;
+          job.mesh_cache = last_accels;
         }
         run_render_job(job);
         ++done;

@@ -277,12 +277,13 @@ void run_render_job(const RenderJob& job) {
     const std::vector<bool> loaded_ok = gather_flags(!failure);
     all_loaded = std::find(loaded_ok.begin(), loaded_ok.end(), false) == loaded_ok.end();
   }
+  PrepareOptions po;
+  po.limits = job.limits;
+  if (spread) po.share = &share_ranks;
+  po.cache = job.mesh_cache.get();
   if (all_loaded) {
     try {
       auto t_prepare = clock::now();
-      PrepareOptions po;
-      po.limits = job.limits;
-      if (spread) po.share = &share_ranks;
       prepared = prepare_scene(loaded.scene, po);
       prepare_s = seconds_since(t_prepare);
     } catch (...) {
@@ -333,6 +334,7 @@ void run_render_job(const RenderJob& job) {
               << seconds_since(t_write) << " s (" << render_path_name(prepared, ro) << " path, " << ro.width << "x"
               << ro.height << ", " << samples_text(result, ro) << "), accel " << prepared.memory_bytes() / 1024
               << " KiB\n";
+  if (job.mesh_cache) keep_mesh_accels(prepared, po.bvh, *job.mesh_cache);  // for the next frame
 }
 
 }  // namespace rayform::cli

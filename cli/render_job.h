@@ -4,6 +4,7 @@
 
 #include "rayform/importers/scene_ready.h"
 #include "rayform/render/color_output.h"
+#include "rayform/render/mesh_accel_cache.h"
 #include "rayform/render/render.h"
 #include "rayform/scene/scene_defaults.h"
 
@@ -66,6 +67,10 @@ struct RenderJob {
   // (load_job_scene), when the caller loaded it already: a turntable's
   // frames on one rank load the file once (render_batch.h).
   std::shared_ptr<const LoadedScene> preloaded;
+  // BVHs kept from the previous frame of `preloaded` (render/mesh_accel_cache.h;
+  // its source is preloaded->scene): a turntable's frames on one rank build
+  // their meshes' BVHs once.
+  std::shared_ptr<MeshAccelCache> mesh_cache;
 };
 
 // `job.input` as run_render_job reads it (before its camera and lights are

@@ -48,6 +48,7 @@ struct BvhBuildOptions {
   // exchange copies the arrays, and the parts wait for each other there).
   // Measured over 2 MPI ranks: a 16k-triangle mesh gains nothing, 32k 18%.
   size_t share_min_triangles = size_t(1) << 15;
+  bool operator==(const BvhBuildOptions&) const = default;
 };
 
 // Builds a BVH; primitives with empty bounds are left out. Deterministic.

@@ -89,9 +89,16 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   // Build each used mesh once, however often it is instanced; in mesh order,
   // which makes the shared builds (collective) the same on every part.
   p.meshes.resize(scene.meshes.size());
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
-    if (mesh_used[i])
-      p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
+  MeshAccelCache* cache = options.share && options.share->shared() ? nullptr : options.cache;
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    if (!mesh_used[i]) continue;
+    if (cache)
+      if (std::optional<MeshAccel> kept = take_cached_mesh_accel(*cache, scene, i, options.bvh)) {
+        p.meshes[i] = std::move(*kept);
+        continue;
+      }
+    p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
+  }
 
   // Top level over bounded instances; planes stay outside.
   std::vector<Bounds3> bounds(p.instances.size());

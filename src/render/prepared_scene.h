@@ -6,6 +6,7 @@
 
 #include "rayform/accel/bvh.h"
 #include "rayform/accel/mesh_accel.h"
+#include "rayform/render/mesh_accel_cache.h"
 #include "rayform/render/texture_sampler.h"
 #include "rayform/scene/limits.h"
 #include "rayform/scene/node_walk.h"
@@ -68,6 +69,10 @@ struct PrepareOptions {
   // parts (build_mesh_accel), one after another in mesh order: every part
   // must prepare the same scene with the same options.
   const WorkShare* share = nullptr;
+  // BVHs kept from the previous frame (render/mesh_accel_cache.h): a used
+  // mesh the cache holds an equal mesh's BVH for takes it instead of a
+  // build. Not used with a shared `share` (every part must make the same builds).
+  MeshAccelCache* cache = nullptr;
 };
 
 struct PreparedScene {

@@ -1,7 +1,8 @@
 // prepare_scene (src/render/prepared_scene.h): the node tree flattened into
 // instances, each used mesh built once however often it is instanced (and
-// read once by the course reader), only the textures of used materials
-// decoded, and the feature flags the render loop relies on.
+// read once by the course reader) and, with a MeshAccelCache, once for all
+// the frames of a turntable, only the textures of used materials decoded,
+// and the feature flags the render loop relies on.
 #include "rayform/importers/course_txt/course_reader.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/scene/error.h"
@@ -125,6 +126,70 @@ TEST(Prepare, SharedPreparesBuildTheLargeUsedMeshesSharedInMeshOrder) {
       EXPECT_EQ(prepared[p].meshes[0].triangles.size(), s.meshes[0].triangle_count());
     }
   }
+}
+
+// The packets' buffer of mesh i: the same buffer after a take from the cache, a new one after a build.
+const TrianglePacket* packets_of(const PreparedScene& p, size_t i) { return p.meshes[i].packets.data(); }
+
+bool same_accel(const MeshAccel& a, const MeshAccel& b) {
+  return same_bytes(a.bvh.nodes, b.bvh.nodes) && same_bytes(a.packets, b.packets) && a.triangles == b.triangles;
+}
+
+TEST(Prepare, ACacheKeepsTheBvhsOfUnchangedMeshesFromFrameToFrame) {
+  // A turntable: every frame a copy of one loaded scene under another camera.
+  Scene source = scene_with({shape_node(ShapeKind::mesh, 0), shape_node(ShapeKind::mesh, 2)});
+  source.meshes.push_back(make_bumpy_torus(3000, 2));
+  source.meshes.push_back(make_icosphere(2));  // unused
+  source.meshes.push_back(make_grid(20, 30));
+  const PreparedScene reference = prepare_scene(source);
+  MeshAccelCache cache;
+  cache.source = &source;
+  auto frame = [&](float x) {
+    Scene f = source;
+    f.cameras[0].center.x = x;
+    return f;
+  };
+  PrepareOptions o;
+  o.cache = &cache;
+  const Scene f1 = frame(1.f);
+  PreparedScene p1 = prepare_scene(f1, o);  // an empty cache: built
+  for (size_t m : {0u, 2u}) EXPECT_TRUE(same_accel(reference.meshes[m], p1.meshes[m])) << "mesh " << m;
+  const TrianglePacket* torus_packets = packets_of(p1, 0);
+  keep_mesh_accels(p1, o.bvh, cache);
+  ASSERT_EQ(cache.meshes.size(), 3u);
+  EXPECT_TRUE(cache.meshes[0] && cache.meshes[2]);
+  EXPECT_FALSE(cache.meshes[1]) << "an unused mesh has no BVH to keep";
+
+  // The next frame takes both BVHs (the very buffers) and gets the structure a build gives.
+  const Scene f2 = frame(2.f);
+  PreparedScene p2 = prepare_scene(f2, o);
+  EXPECT_EQ(packets_of(p2, 0), torus_packets) << "the torus was built again";
+  for (size_t m : {0u, 2u}) EXPECT_TRUE(same_accel(reference.meshes[m], p2.meshes[m])) << "mesh " << m;
+  EXPECT_FALSE(cache.meshes[0] || cache.meshes[2]) << "taken, not copied";
+  EXPECT_TRUE(p2.meshes[1].bvh.nodes.empty());
+  keep_mesh_accels(p2, o.bvh, cache);
+
+  // A frame whose grid moved one vertex: the grid is built again, the torus still taken.
+  Scene f3 = frame(3.f);
+  f3.meshes[2].positions[7].z += 0.25f;
+  const TrianglePacket* grid_packets = cache.meshes[2]->packets.data();
+  PreparedScene p3 = prepare_scene(f3, o);
+  EXPECT_EQ(packets_of(p3, 0), torus_packets);
+  EXPECT_NE(packets_of(p3, 2), grid_packets);
+  EXPECT_TRUE(same_accel(prepare_scene(f3).meshes[2], p3.meshes[2])) << "the changed grid's own BVH";
+  EXPECT_FALSE(same_accel(reference.meshes[2], p3.meshes[2]));
+  keep_mesh_accels(p3, o.bvh, cache);
+  EXPECT_TRUE(cache.meshes[0]);
+  EXPECT_FALSE(cache.meshes[2]) << "kept a BVH of a mesh that is not the source's";
+
+  // Other build options: built again, as those options build it.
+  PrepareOptions other = o;
+  other.bvh.max_leaf_size = 2;
+  PreparedScene p4 = prepare_scene(f2, other);
+  EXPECT_NE(packets_of(p4, 0), torus_packets);
+  PrepareOptions other_alone;
+  other_alone.bvh = other.bvh;
+  EXPECT_TRUE(same_accel(prepare_scene(f2, other_alone).meshes[0], p4.meshes[0]));
 }
 
 Texture embedded_texture() {
