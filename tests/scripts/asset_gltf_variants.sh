@@ -47,7 +47,13 @@
 # Needs the node tools (scripts/install-node-tools: @gltf-transform/cli 4.5.1,
 # gltfpack 1.3.0, obj2gltf 3.2.0), found in $RAYFORM_NODE_TOOLS, <build>/node
 # or ~/.cache/rayform/node (installed there when npm can reach the registry);
-# skipped (77) without them or without the third-party assets.
+# skipped (77) without them or without the third-party assets. The tool calls
+# are made in few node processes (run_node_tools in lib.sh, through
+# tests/tools/run_node_tools.mjs: the tools' own command code with the same
+# arguments, byte-identical files): one for every OBJ -> .glb conversion, one
+# per model for its variants. A node start per call (about 1 s for
+# gltf-transform and obj2gltf) was most of this test's time. A call that
+# process does not finish is made again with the tool's command.
 # Environment: RAYFORM_GLTF_VARIANTS_MODELS / _VARIANTS (extended regular
 # expressions: only the matching model names / variant names),
 # RAYFORM_GLTF_VARIANTS_KEEP=DIR (keep every file and picture there),
@@ -62,11 +68,6 @@ fi
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool not found (apt-get install openimageio-tools)"; exit 1; }
 command -v python3 >/dev/null || { echo "FAIL: python3 not found"; exit 1; }
 find_node_tools node_modules/.bin/gltf-transform node_modules/.bin/gltfpack node_modules/.bin/obj2gltf
-tools=$RAYFORM_NODE_TOOLS
-bin=$tools/node_modules/.bin
-echo "tools: gltf-transform $("$bin/gltf-transform" --version 2>/dev/null | tail -1)," \
-     "$("$bin/gltfpack" -v 2>&1 | head -1), obj2gltf $("$bin/obj2gltf" --version 2>/dev/null)"
-
 jobs=${RAYFORM_GLTF_VARIANTS_JOBS:-2}
 [ "$jobs" -ge 1 ] 2>/dev/null && [ "$jobs" -le 2 ] || jobs=2
 threads=$((2 / jobs))  # the machine budget: 2 cores in all
@@ -77,6 +78,14 @@ if [ -n "${RAYFORM_GLTF_VARIANTS_KEEP:-}" ]; then
 else
   tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fi
+# The tools' versions (one node process: run_node_tools, lib.sh).
+mkdir -p "$tmp/versions"
+printf '%s\t%s\t%s\t%s\n' "$tmp/versions" "$tmp/versions/gltf-transform" gltf-transform --version \
+  "$tmp/versions" "$tmp/versions/gltfpack" gltfpack -v "$tmp/versions" "$tmp/versions/obj2gltf" obj2gltf --version \
+  >"$tmp/versions/jobs"
+run_node_tools "$tmp/versions/jobs" 60
+echo "tools: gltf-transform $(tail -n 1 "$tmp/versions/gltf-transform")," \
+     "$(head -n 1 "$tmp/versions/gltfpack"), obj2gltf $(cat "$tmp/versions/obj2gltf")"
 gen="$RAYFORM_SOURCE_DIR/tests/tools/make_instanced_gltf.py"
 py=$(python3 -c 'import sys; print(sys.executable)')  # the interpreter itself (a pyenv shim costs 0.2 s a call)
 start=$SECONDS
@@ -144,7 +153,7 @@ do_model() {
   local line x0 y0 z0 x1 y1 z1 v vname tool args want out ref note why ext j kind status
   local textures instances meshes
   local -a argv made=() compare=() camera_nf
-  local -A exts=() reason=() notes=() result=() share=()
+  local -A exts=() reason=() notes=() result=() share=() tool_status=()
   mkdir -p "$dir"
 
   # The camera: from the +x+y+z side, at the distance where the bounding
@@ -174,26 +183,42 @@ do_model() {
   fi
 
   # 1. Make the variants (skipped without running the tool when rayform info
-  #    shows there is nothing for it to do).
-  for v in "${variants[@]}" ${premade:+"$premade_name|premade||"}; do
+  #    shows there is nothing for it to do): every tool call of the model
+  #    (and the PNG-decoded copy of the lossy WebP variant, the reference of
+  #    step 3) queued, then made in one node process (run_node_tools, lib.sh).
+  : >"$dir/tools.jobs"
+  for v in "${variants[@]}"; do
     IFS='|' read -r vname tool args want <<<"$v"
     [[ $vname =~ ${RAYFORM_GLTF_VARIANTS_VARIANTS:-.} ]] || continue
     out="$dir/$vname.glb"
-    if [ "$tool" = premade ]; then
-      cp "$premade" "$out" || { reason[$vname]="SKIP (could not copy $premade)"; continue; }
-    elif [ "$want" = EXT_texture_webp ] && [ "${textures:-0}" = 0 ]; then
-      reason[$vname]="SKIP (no texture to convert)"; continue
+    if [ "$want" = EXT_texture_webp ] && [ "${textures:-0}" = 0 ]; then
+      reason[$vname]="SKIP (no texture to convert)"
     elif [ "$want" = EXT_mesh_gpu_instancing ] && [ -n "$instances" ] && [ "$instances" = "$meshes" ]; then
-      reason[$vname]="SKIP (no mesh used by several nodes: $instances placements of $meshes meshes)"; continue
+      reason[$vname]="SKIP (no mesh used by several nodes: $instances placements of $meshes meshes)"
     else
       read -r -a argv <<<"$args"
       for j in "${!argv[@]}"; do
         case ${argv[j]} in IN) argv[j]=$orig ;; OUT) argv[j]=$out ;; esac
       done
-      if ! (cd "$dir" && timeout 300 "$bin/$tool" "${argv[@]}") >"$dir/$vname.tool.log" 2>&1 || [ ! -s "$out" ]; then
-        reason[$vname]="SKIP ($tool could not make it: $( (grep -m 1 -i 'error' "$dir/$vname.tool.log" || tail -n 1 "$dir/$vname.tool.log") | cut -c1-160))"
-        continue
-      fi
+      (IFS=$'\t'; echo "$dir"$'\t'"$dir/$vname.tool.log"$'\t'"$tool"$'\t'"${argv[*]}") >>"$dir/tools.jobs"
+      [ "$vname" = webp ] && printf '%s\t' "$dir" "$dir/webp-png.tool.log" gltf-transform png --formats webp \
+        "$dir/webp.glb" >>"$dir/tools.jobs" && echo "$dir/webp-png.glb" >>"$dir/tools.jobs"
+    fi
+  done
+  if [ -s "$dir/tools.jobs" ]; then
+    run_node_tools "$dir/tools.jobs" 300
+    while IFS=$'\t' read -r j out; do tool_status[$out]=$j; done <"$dir/tools.jobs.status"
+  fi
+  for v in "${variants[@]}" ${premade:+"$premade_name|premade||"}; do
+    IFS='|' read -r vname tool args want <<<"$v"
+    [[ $vname =~ ${RAYFORM_GLTF_VARIANTS_VARIANTS:-.} ]] || continue
+    [ -z "${reason[$vname]:-}" ] || continue
+    out="$dir/$vname.glb"
+    if [ "$tool" = premade ]; then
+      cp "$premade" "$out" || { reason[$vname]="SKIP (could not copy $premade)"; continue; }
+    elif [ "${tool_status[$dir/$vname.tool.log]:-}" != 0 ] || [ ! -s "$out" ]; then
+      reason[$vname]="SKIP ($tool could not make it: $( (grep -m 1 -i 'error' "$dir/$vname.tool.log" || tail -n 1 "$dir/$vname.tool.log") | cut -c1-160))"
+      continue
     fi
     made+=("$vname")
   done
@@ -224,8 +249,7 @@ do_model() {
     if [ "$vname" = webp ]; then
       # lossy: the reference is this file with its WebP images decoded to PNG
       why=""
-      if ! (cd "$dir" && timeout 300 "$bin/gltf-transform" png --formats webp "$dir/webp.glb" "$dir/webp-png.glb") >"$dir/webp-png.tool.log" 2>&1 ||
-         ! why=$(render "$dir/webp-png.glb" "$dir/webp-png"); then
+      if [ "${tool_status[$dir/webp-png.tool.log]:-}" != 0 ] || ! why=$(render "$dir/webp-png.glb" "$dir/webp-png"); then
         reason[$vname]="SKIP (could not make or render its PNG-decoded reference: $(tail -n 1 "$dir/webp-png.tool.log" | cut -c1-120) $why) [$ext]"
         continue
       fi
@@ -302,11 +326,12 @@ for m in "${models[@]}"; do
 done
 [ ${#selected[@]} -gt 0 ] || { echo "FAIL: no model (RAYFORM_GLTF_VARIANTS_MODELS='${RAYFORM_GLTF_VARIANTS_MODELS:-}' matches none)"; exit 1; }
 
-# 1. OBJ -> .glb (obj2gltf, else rayform convert), at most $jobs at a time.
-#    Writes FOLDER/original.glb and FOLDER/conv (the note for the result lines).
+# 1. OBJ -> .glb (obj2gltf, every file in one node process: run_node_tools,
+#    lib.sh; else rayform convert). Writes FOLDER/original.glb and FOLDER/conv
+#    (the note for the result lines).
+declare -A obj2gltf_status=()
 convert_obj() {  # SOURCE FOLDER
-  mkdir -p "$2"
-  if (cd "$2" && timeout 120 "$bin/obj2gltf" -i "$1" -o "$2/original.glb") >"$2/obj2gltf.log" 2>&1 && [ -s "$2/original.glb" ]; then
+  if [ "${obj2gltf_status[$2/obj2gltf.log]:-}" = 0 ] && [ -s "$2/original.glb" ]; then
     echo " (via obj2gltf)" >"$2/conv"
   elif timeout 120 "$RAYFORM_BIN" convert "$1" "$2/original.glb" >"$2/convert.log" 2>&1; then
     echo " (via rayform convert: obj2gltf failed: $( (grep -m 1 -i 'error' "$2/obj2gltf.log" || tail -n 1 "$2/obj2gltf.log") | cut -c1-100))" >"$2/conv"
@@ -315,13 +340,23 @@ convert_obj() {  # SOURCE FOLDER
     echo "obj2gltf and rayform convert both failed: $(tail -n 1 "$2/convert.log" | cut -c1-160)" >"$2/conv"
   fi
 }
+: >"$tmp/obj2gltf.jobs"
 for ((k = 0; k < ${#selected[@]}; k++)); do
   IFS='|' read -r name src _ <<<"${selected[k]}"
   case $src in *.obj|*.OBJ) ;; *) continue ;; esac
-  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
-  convert_obj "$src" "$tmp/m$k" &
+  mkdir -p "$tmp/m$k"
+  printf '%s\t' "$tmp/m$k" "$tmp/m$k/obj2gltf.log" obj2gltf -i "$src" -o >>"$tmp/obj2gltf.jobs"
+  echo "$tmp/m$k/original.glb" >>"$tmp/obj2gltf.jobs"
 done
-wait
+if [ -s "$tmp/obj2gltf.jobs" ]; then
+  run_node_tools "$tmp/obj2gltf.jobs" 120
+  while IFS=$'\t' read -r status log; do obj2gltf_status[$log]=$status; done <"$tmp/obj2gltf.jobs.status"
+fi
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  IFS='|' read -r name src _ <<<"${selected[k]}"
+  case $src in *.obj|*.OBJ) ;; *) continue ;; esac
+  convert_obj "$src" "$tmp/m$k"
+done
 
 # 2. OBJ files that convert to the same glTF (but for names, paths and the
 #    generator string) are the same test: only the first one is run.
