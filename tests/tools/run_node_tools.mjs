@@ -19,8 +19,14 @@
 //   Each job runs in FOLDER (the working folder of a CLI call); what the tool
 //   prints goes to LOG, as the CLI would print it (a failure's message too).
 // Prints "STATUS<TAB>LOG" per job when it ends (0 made, 1 failed); a job
-// whose line is missing (the process died or was stopped) is for the caller
-// to run again with the tool's own command.
+// whose line is missing is for the caller to run again with the tool's own
+// command. Missing are: the jobs after the process died or was stopped; and
+// the jobs from a gltf-transform or gltfpack failure on, that one included:
+// the process then stops, as the state of their WebAssembly modules (Draco,
+// meshoptimizer, gltfpack) after an error is not known, and the command gives
+// the failure's own message. A tool that cannot be loaded here (its
+// package's layout changed) stops it too. obj2gltf is plain JavaScript: its
+// failures are reported (status 1, its message as its CLI prints it).
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
@@ -48,6 +54,9 @@ const loaders = {
     const { program: caporal } = await import(moduleUrl('@donmccurdy/caporal/dist/caporal.modern.js'));
     program.disableGlobalOption('--silent');
     await programReady;
+    if (!caporal.getCommands().some((c) => c.name === 'draco')) {
+      throw new Error('@donmccurdy/caporal loaded here is not the instance of @gltf-transform/cli');
+    }
     return async (args) => {
       try {
         await caporal.run(args);
@@ -151,12 +160,17 @@ for (const line of jobs) {
   }
   logFd = fs.openSync(log, 'w');
   process.exitCode = 0;
+  let loadFailed = false;
   try {
     process.chdir(folder || home);
-    loaded[tool] ??= await loaders[tool]();
+    try {
+      loaded[tool] ??= await loaders[tool]();
+    } catch (err) {
+      loadFailed = true;
+      throw err;
+    }
     await loaded[tool](args);
   } catch (err) {
-    // What node prints for an error that ends the CLI.
     process.stderr.write(`${err && err.stack ? err.stack : err}\n`);
     process.exitCode = 1;
   }
@@ -164,5 +178,9 @@ for (const line of jobs) {
   fs.closeSync(logFd);
   logFd = null;
   process.exitCode = 0;
+  if (status !== 0 && (loadFailed || tool !== 'obj2gltf')) {
+    process.stderr.write(`run_node_tools.mjs: ${tool} failed on ${log}: stopping here (the rest by the commands)\n`);
+    process.exit(3);
+  }
   realStdoutWrite(`${status}\t${log}\n`);
 }
