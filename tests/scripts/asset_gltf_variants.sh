@@ -50,10 +50,12 @@
 # skipped (77) without them or without the third-party assets. The tool calls
 # are made in few node processes (run_node_tools in lib.sh, through
 # tests/tools/run_node_tools.mjs: the tools' own command code with the same
-# arguments, byte-identical files): one for every OBJ -> .glb conversion, one
-# per model for its variants. A node start per call (about 1 s for
-# gltf-transform and obj2gltf) was most of this test's time. A call that
-# process does not finish is made again with the tool's command.
+# arguments, byte-identical files): one for every OBJ -> .glb conversion, then
+# the variants of all models in RAYFORM_GLTF_VARIANTS_JOBS processes at once,
+# before the models are rendered and compared. A node start per call (about
+# 1 s for gltf-transform and obj2gltf, 360 calls) was most of this test's
+# time. A call those processes do not finish is made again with the tool's
+# command.
 # Environment: RAYFORM_GLTF_VARIANTS_MODELS / _VARIANTS (extended regular
 # expressions: only the matching model names / variant names),
 # RAYFORM_GLTF_VARIANTS_KEEP=DIR (keep every file and picture there),
@@ -143,49 +145,18 @@ declare -A albedo_unjudged=(
   ["obj2gltf-edge-cases/box-mixed-attributes-2/box-mixed-attributes-2.obj"]="the cube is defined 4 times with different materials"
 )
 
-# One model: camera, every variant made
-# and rendered, then all compared in one oiiotool process (idiff's rule and
-# comparison, -fail 0.0236 -failpercent 2, without a process start per
-# picture). Writes its result lines on stdout.
-# Arguments: NAME ORIGINAL CONVERSION_NOTE FOLDER [PREMADE_NAME PREMADE_FILE].
-do_model() {
-  local name=$1 orig=$2 conv=$3 dir=$4 premade_name=${5:-} premade=${6:-}
-  local line x0 y0 z0 x1 y1 z1 v vname tool args want out ref note why ext j kind status
-  local textures instances meshes
-  local -a argv made=() compare=() camera_nf
-  local -A exts=() reason=() notes=() result=() share=() tool_status=()
-  mkdir -p "$dir"
-
-  # The camera: from the +x+y+z side, at the distance where the bounding
-  # sphere just fills the 40 degree view; depth from the sphere's near to far side.
-  "$RAYFORM_BIN" info "$orig" >"$dir/info.txt" 2>&1
-  line=$(sed -n 's/^bounds: *(\(.*\)) - (\(.*\))$/\1, \2/p' "$dir/info.txt" | tr -d ',')
-  read -r x0 y0 z0 x1 y1 z1 <<<"$line"
-  if [ -z "${z1:-}" ]; then
-    echo "FAIL $name original$conv (rayform info gives no bounds: $(tail -n 1 "$dir/info.txt" | cut -c1-200))"
-    return
-  fi
+# The tool calls of a model's variants, queued in FOLDER/tools.jobs (for
+# run_node_tools, lib.sh), and a SKIP reason in the caller's array `reason` for
+# a variant whose tool has nothing to do, as FOLDER/info.txt (`rayform info`)
+# shows: webp without textures, instancing where no mesh is used twice. The
+# lossy WebP variant brings the call that decodes its WebP images to PNG (the
+# reference of its comparison). Arguments: ORIGINAL FOLDER.
+plan_variants() {
+  local orig=$1 dir=$2 v vname tool args want out j textures instances meshes
+  local -a argv
   textures=$(sed -n 's/^textures: *\([0-9]*\).*/\1/p' "$dir/info.txt")
   instances=$(sed -n 's/^instances: *\([0-9]*\).*/\1/p' "$dir/info.txt")
   meshes=$(sed -n 's/^triangles:.* in \([0-9]*\) meshes.*/\1/p' "$dir/info.txt")
-  read -r -a camera_nf < <(awk -v a="$x0" -v b="$y0" -v c="$z0" -v d="$x1" -v e="$y1" -v f="$z1" 'BEGIN {
-    cx = (a + d) / 2; cy = (b + e) / 2; cz = (c + f) / 2
-    r = sqrt((d - a) ^ 2 + (e - b) ^ 2 + (f - c) ^ 2) / 2; if (r <= 0) r = 1
-    n = sqrt(0.55 ^ 2 + 0.45 ^ 2 + 0.70 ^ 2); dist = r / sin(20 * 3.14159265 / 180)
-    printf "%.7g,%.7g,%.7g %.7g,%.7g,%.7g %.7g %.7g\n", cx + dist * 0.55 / n, cy + dist * 0.45 / n, cz + dist * 0.70 / n,
-           cx, cy, cz, dist - 1.02 * r, dist + 1.02 * r }')
-  # shellcheck disable=SC2054  # the commas are the options' own
-  camera=(--look-from "${camera_nf[0]}" --look-at "${camera_nf[1]}" --up 0,1,0 --fov 40)
-  near=${camera_nf[2]} far=${camera_nf[3]}
-  if ! why=$(render "$orig" "$dir/original"); then
-    echo "FAIL $name original$conv ($why) [$(extensions "$orig" | cut -f2)]"
-    return
-  fi
-
-  # 1. Make the variants (skipped without running the tool when rayform info
-  #    shows there is nothing for it to do): every tool call of the model
-  #    (and the PNG-decoded copy of the lossy WebP variant, the reference of
-  #    step 3) queued, then made in one node process (run_node_tools, lib.sh).
   : >"$dir/tools.jobs"
   for v in "${variants[@]}"; do
     IFS='|' read -r vname tool args want <<<"$v"
@@ -205,8 +176,49 @@ do_model() {
         "$dir/webp.glb" >>"$dir/tools.jobs" && echo "$dir/webp-png.glb" >>"$dir/tools.jobs"
     fi
   done
+}
+
+# One model: camera, every variant made
+# and rendered, then all compared in one oiiotool process (idiff's rule and
+# comparison, -fail 0.0236 -failpercent 2, without a process start per
+# picture). Writes its result lines on stdout.
+# Arguments: NAME ORIGINAL CONVERSION_NOTE FOLDER [PREMADE_NAME PREMADE_FILE].
+do_model() {
+  local name=$1 orig=$2 conv=$3 dir=$4 premade_name=${5:-} premade=${6:-}
+  local line x0 y0 z0 x1 y1 z1 v vname tool args want out ref note why ext j kind status
+  local -a made=() compare=() camera_nf
+  local -A exts=() reason=() notes=() result=() share=() tool_status=()
+  mkdir -p "$dir"
+
+  # The camera: from the +x+y+z side, at the distance where the bounding
+  # sphere just fills the 40 degree view; depth from the sphere's near to far side.
+  "$RAYFORM_BIN" info "$orig" >"$dir/info.txt" 2>&1
+  line=$(sed -n 's/^bounds: *(\(.*\)) - (\(.*\))$/\1, \2/p' "$dir/info.txt" | tr -d ',')
+  read -r x0 y0 z0 x1 y1 z1 <<<"$line"
+  if [ -z "${z1:-}" ]; then
+    echo "FAIL $name original$conv (rayform info gives no bounds: $(tail -n 1 "$dir/info.txt" | cut -c1-200))"
+    return
+  fi
+  read -r -a camera_nf < <(awk -v a="$x0" -v b="$y0" -v c="$z0" -v d="$x1" -v e="$y1" -v f="$z1" 'BEGIN {
+    cx = (a + d) / 2; cy = (b + e) / 2; cz = (c + f) / 2
+    r = sqrt((d - a) ^ 2 + (e - b) ^ 2 + (f - c) ^ 2) / 2; if (r <= 0) r = 1
+    n = sqrt(0.55 ^ 2 + 0.45 ^ 2 + 0.70 ^ 2); dist = r / sin(20 * 3.14159265 / 180)
+    printf "%.7g,%.7g,%.7g %.7g,%.7g,%.7g %.7g %.7g\n", cx + dist * 0.55 / n, cy + dist * 0.45 / n, cz + dist * 0.70 / n,
+           cx, cy, cz, dist - 1.02 * r, dist + 1.02 * r }')
+  # shellcheck disable=SC2054  # the commas are the options' own
+  camera=(--look-from "${camera_nf[0]}" --look-at "${camera_nf[1]}" --up 0,1,0 --fov 40)
+  near=${camera_nf[2]} far=${camera_nf[3]}
+  if ! why=$(render "$orig" "$dir/original"); then
+    echo "FAIL $name original$conv ($why) [$(extensions "$orig" | cut -f2)]"
+    return
+  fi
+
+  # 1. The variants: those rayform info shows nothing to do for skipped, the
+  #    others made by their tools (the calls of every model were made before,
+  #    step 3 of the main part; here only when those have not been made).
+  plan_variants "$orig" "$dir"
   if [ -s "$dir/tools.jobs" ]; then
-    run_node_tools "$dir/tools.jobs" 300
+    [ -f "$dir/tools.jobs.status" ] || run_node_tools "$dir/tools.jobs" 300
     while IFS=$'\t' read -r j out; do tool_status[$out]=$j; done <"$dir/tools.jobs.status"
   fi
   for v in "${variants[@]}" ${premade:+"$premade_name|premade||"}; do
@@ -382,9 +394,10 @@ EOF
 declare -A duplicate_of=()
 while read -r k first; do duplicate_of[$k]=$first; done <"$tmp/duplicates.txt"
 
-# 3. The variants of every model, at most $jobs models at a time.
+# 3. The models to run (their original: FOLDER/original.glb for an OBJ).
+declare -A original=() note=()
 for ((k = 0; k < ${#selected[@]}; k++)); do
-  IFS='|' read -r name src pname pfile <<<"${selected[k]}"
+  IFS='|' read -r name src _ <<<"${selected[k]}"
   conv=""
   case $src in
     *.obj|*.OBJ)
@@ -397,8 +410,41 @@ for ((k = 0; k < ${#selected[@]}; k++)); do
       fi
       src=$tmp/m$k/original.glb ;;
   esac
+  original[$k]=$src note[$k]=$conv
+done
+
+# 4. Every model's tool calls, made first in $jobs node processes (run_node_tools,
+#    lib.sh; the models dealt to them in turn): a node process per model
+#    would start gltf-transform (about 1 s) again and again.
+lanes=0
+rm -f "$tmp"/lane*.jobs*
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  [ -n "${original[$k]:-}" ] || continue
+  mkdir -p "$tmp/m$k"; rm -f "$tmp/m$k/tools.jobs.status"
+  "$RAYFORM_BIN" info "${original[$k]}" >"$tmp/m$k/info.txt" 2>&1
+  grep -q '^bounds:' "$tmp/m$k/info.txt" || continue  # do_model reports it
+  declare -A reason=()
+  plan_variants "${original[$k]}" "$tmp/m$k"
+  unset reason
+  cat "$tmp/m$k/tools.jobs" >>"$tmp/lane$((lanes % jobs)).jobs"
+  lanes=$((lanes + 1))
+done
+for ((j = 0; j < jobs && j < lanes; j++)); do
+  run_node_tools "$tmp/lane$j.jobs" 1200 300 &
+done
+wait
+for ((j = 0; j < jobs && j < lanes; j++)); do
+  while IFS=$'\t' read -r status log; do
+    printf '%s\t%s\n' "$status" "$log" >>"${log%/*}/tools.jobs.status"
+  done <"$tmp/lane$j.jobs.status"
+done
+
+# 5. The variants of every model rendered and compared, at most $jobs models at a time.
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  [ -n "${original[$k]:-}" ] || continue
+  IFS='|' read -r name _ pname pfile <<<"${selected[k]}"
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
-  do_model "$name" "$src" "$conv" "$tmp/m$k" "$pname" "$pfile" >"$tmp/result$k.txt" 2>&1 &
+  do_model "$name" "${original[$k]}" "${note[$k]}" "$tmp/m$k" "$pname" "$pfile" >"$tmp/result$k.txt" 2>&1 &
 done
 wait
 for ((k = 0; k < ${#selected[@]}; k++)); do cat "$tmp/result$k.txt"; done >"$tmp/results.txt"
