@@ -47,7 +47,15 @@
 # Needs the node tools (scripts/install-node-tools: @gltf-transform/cli 4.5.1,
 # gltfpack 1.3.0, obj2gltf 3.2.0), found in $RAYFORM_NODE_TOOLS, <build>/node
 # or ~/.cache/rayform/node (installed there when npm can reach the registry);
-# skipped (77) without them or without the third-party assets.
+# skipped (77) without them or without the third-party assets. The tool calls
+# are made in few node processes (run_node_tools in lib.sh, through
+# tests/tools/run_node_tools.mjs: the tools' own command code with the same
+# arguments, byte-identical files): one for every OBJ -> .glb conversion, then
+# the variants of all models in RAYFORM_GLTF_VARIANTS_JOBS processes at once,
+# before the models are rendered and compared. A node start per call (about
+# 1 s for gltf-transform and obj2gltf, 360 calls) was most of this test's
+# time. A call those processes do not finish is made again with the tool's
+# command.
 # Environment: RAYFORM_GLTF_VARIANTS_MODELS / _VARIANTS (extended regular
 # expressions: only the matching model names / variant names),
 # RAYFORM_GLTF_VARIANTS_KEEP=DIR (keep every file and picture there),
@@ -62,11 +70,6 @@ fi
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool not found (apt-get install openimageio-tools)"; exit 1; }
 command -v python3 >/dev/null || { echo "FAIL: python3 not found"; exit 1; }
 find_node_tools node_modules/.bin/gltf-transform node_modules/.bin/gltfpack node_modules/.bin/obj2gltf
-tools=$RAYFORM_NODE_TOOLS
-bin=$tools/node_modules/.bin
-echo "tools: gltf-transform $("$bin/gltf-transform" --version 2>/dev/null | tail -1)," \
-     "$("$bin/gltfpack" -v 2>&1 | head -1), obj2gltf $("$bin/obj2gltf" --version 2>/dev/null)"
-
 jobs=${RAYFORM_GLTF_VARIANTS_JOBS:-2}
 [ "$jobs" -ge 1 ] 2>/dev/null && [ "$jobs" -le 2 ] || jobs=2
 threads=$((2 / jobs))  # the machine budget: 2 cores in all
@@ -77,6 +80,14 @@ if [ -n "${RAYFORM_GLTF_VARIANTS_KEEP:-}" ]; then
 else
   tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fi
+# The tools' versions (one node process: run_node_tools, lib.sh).
+mkdir -p "$tmp/versions"
+printf '%s\t%s\t%s\t%s\n' "$tmp/versions" "$tmp/versions/gltf-transform" gltf-transform --version \
+  "$tmp/versions" "$tmp/versions/gltfpack" gltfpack -v "$tmp/versions" "$tmp/versions/obj2gltf" obj2gltf --version \
+  >"$tmp/versions/jobs"
+run_node_tools "$tmp/versions/jobs" 60
+echo "tools: gltf-transform $(tail -n 1 "$tmp/versions/gltf-transform")," \
+     "$(head -n 1 "$tmp/versions/gltfpack"), obj2gltf $(cat "$tmp/versions/obj2gltf")"
 gen="$RAYFORM_SOURCE_DIR/tests/tools/make_instanced_gltf.py"
 py=$(python3 -c 'import sys; print(sys.executable)')  # the interpreter itself (a pyenv shim costs 0.2 s a call)
 start=$SECONDS
@@ -134,6 +145,39 @@ declare -A albedo_unjudged=(
   ["obj2gltf-edge-cases/box-mixed-attributes-2/box-mixed-attributes-2.obj"]="the cube is defined 4 times with different materials"
 )
 
+# The tool calls of a model's variants, queued in FOLDER/tools.jobs (for
+# run_node_tools, lib.sh), and a SKIP reason in the caller's array `reason` for
+# a variant whose tool has nothing to do, as FOLDER/info.txt (`rayform info`)
+# shows: webp without textures, instancing where no mesh is used twice. The
+# lossy WebP variant brings the call that decodes its WebP images to PNG (the
+# reference of its comparison). Arguments: ORIGINAL FOLDER.
+plan_variants() {
+  local orig=$1 dir=$2 v vname tool args want out j textures instances meshes
+  local -a argv
+  textures=$(sed -n 's/^textures: *\([0-9]*\).*/\1/p' "$dir/info.txt")
+  instances=$(sed -n 's/^instances: *\([0-9]*\).*/\1/p' "$dir/info.txt")
+  meshes=$(sed -n 's/^triangles:.* in \([0-9]*\) meshes.*/\1/p' "$dir/info.txt")
+  : >"$dir/tools.jobs"
+  for v in "${variants[@]}"; do
+    IFS='|' read -r vname tool args want <<<"$v"
+    [[ $vname =~ ${RAYFORM_GLTF_VARIANTS_VARIANTS:-.} ]] || continue
+    out="$dir/$vname.glb"
+    if [ "$want" = EXT_texture_webp ] && [ "${textures:-0}" = 0 ]; then
+      reason[$vname]="SKIP (no texture to convert)"
+    elif [ "$want" = EXT_mesh_gpu_instancing ] && [ -n "$instances" ] && [ "$instances" = "$meshes" ]; then
+      reason[$vname]="SKIP (no mesh used by several nodes: $instances placements of $meshes meshes)"
+    else
+      read -r -a argv <<<"$args"
+      for j in "${!argv[@]}"; do
+        case ${argv[j]} in IN) argv[j]=$orig ;; OUT) argv[j]=$out ;; esac
+      done
+      (IFS=$'\t'; echo "$dir"$'\t'"$dir/$vname.tool.log"$'\t'"$tool"$'\t'"${argv[*]}") >>"$dir/tools.jobs"
+      [ "$vname" = webp ] && printf '%s\t' "$dir" "$dir/webp-png.tool.log" gltf-transform png --formats webp \
+        "$dir/webp.glb" >>"$dir/tools.jobs" && echo "$dir/webp-png.glb" >>"$dir/tools.jobs"
+    fi
+  done
+}
+
 # One model: camera, every variant made
 # and rendered, then all compared in one oiiotool process (idiff's rule and
 # comparison, -fail 0.0236 -failpercent 2, without a process start per
@@ -142,9 +186,8 @@ declare -A albedo_unjudged=(
 do_model() {
   local name=$1 orig=$2 conv=$3 dir=$4 premade_name=${5:-} premade=${6:-}
   local line x0 y0 z0 x1 y1 z1 v vname tool args want out ref note why ext j kind status
-  local textures instances meshes
-  local -a argv made=() compare=() camera_nf
-  local -A exts=() reason=() notes=() result=() share=()
+  local -a made=() compare=() camera_nf
+  local -A exts=() reason=() notes=() result=() share=() tool_status=()
   mkdir -p "$dir"
 
   # The camera: from the +x+y+z side, at the distance where the bounding
@@ -156,9 +199,6 @@ do_model() {
     echo "FAIL $name original$conv (rayform info gives no bounds: $(tail -n 1 "$dir/info.txt" | cut -c1-200))"
     return
   fi
-  textures=$(sed -n 's/^textures: *\([0-9]*\).*/\1/p' "$dir/info.txt")
-  instances=$(sed -n 's/^instances: *\([0-9]*\).*/\1/p' "$dir/info.txt")
-  meshes=$(sed -n 's/^triangles:.* in \([0-9]*\) meshes.*/\1/p' "$dir/info.txt")
   read -r -a camera_nf < <(awk -v a="$x0" -v b="$y0" -v c="$z0" -v d="$x1" -v e="$y1" -v f="$z1" 'BEGIN {
     cx = (a + d) / 2; cy = (b + e) / 2; cz = (c + f) / 2
     r = sqrt((d - a) ^ 2 + (e - b) ^ 2 + (f - c) ^ 2) / 2; if (r <= 0) r = 1
@@ -173,27 +213,24 @@ do_model() {
     return
   fi
 
-  # 1. Make the variants (skipped without running the tool when rayform info
-  #    shows there is nothing for it to do).
+  # 1. The variants: those rayform info shows nothing to do for skipped, the
+  #    others made by their tools (the calls of every model were made before,
+  #    step 3 of the main part; here only when those have not been made).
+  plan_variants "$orig" "$dir"
+  if [ -s "$dir/tools.jobs" ]; then
+    [ -f "$dir/tools.jobs.status" ] || run_node_tools "$dir/tools.jobs" 300
+    while IFS=$'\t' read -r j out; do tool_status[$out]=$j; done <"$dir/tools.jobs.status"
+  fi
   for v in "${variants[@]}" ${premade:+"$premade_name|premade||"}; do
     IFS='|' read -r vname tool args want <<<"$v"
     [[ $vname =~ ${RAYFORM_GLTF_VARIANTS_VARIANTS:-.} ]] || continue
+    [ -z "${reason[$vname]:-}" ] || continue
     out="$dir/$vname.glb"
     if [ "$tool" = premade ]; then
       cp "$premade" "$out" || { reason[$vname]="SKIP (could not copy $premade)"; continue; }
-    elif [ "$want" = EXT_texture_webp ] && [ "${textures:-0}" = 0 ]; then
-      reason[$vname]="SKIP (no texture to convert)"; continue
-    elif [ "$want" = EXT_mesh_gpu_instancing ] && [ -n "$instances" ] && [ "$instances" = "$meshes" ]; then
-      reason[$vname]="SKIP (no mesh used by several nodes: $instances placements of $meshes meshes)"; continue
-    else
-      read -r -a argv <<<"$args"
-      for j in "${!argv[@]}"; do
-        case ${argv[j]} in IN) argv[j]=$orig ;; OUT) argv[j]=$out ;; esac
-      done
-      if ! (cd "$dir" && timeout 300 "$bin/$tool" "${argv[@]}") >"$dir/$vname.tool.log" 2>&1 || [ ! -s "$out" ]; then
-        reason[$vname]="SKIP ($tool could not make it: $( (grep -m 1 -i 'error' "$dir/$vname.tool.log" || tail -n 1 "$dir/$vname.tool.log") | cut -c1-160))"
-        continue
-      fi
+    elif [ "${tool_status[$dir/$vname.tool.log]:-}" != 0 ] || [ ! -s "$out" ]; then
+      reason[$vname]="SKIP ($tool could not make it: $( (grep -m 1 -i 'error' "$dir/$vname.tool.log" || tail -n 1 "$dir/$vname.tool.log") | cut -c1-160))"
+      continue
     fi
     made+=("$vname")
   done
@@ -224,8 +261,7 @@ do_model() {
     if [ "$vname" = webp ]; then
       # lossy: the reference is this file with its WebP images decoded to PNG
       why=""
-      if ! (cd "$dir" && timeout 300 "$bin/gltf-transform" png --formats webp "$dir/webp.glb" "$dir/webp-png.glb") >"$dir/webp-png.tool.log" 2>&1 ||
-         ! why=$(render "$dir/webp-png.glb" "$dir/webp-png"); then
+      if [ "${tool_status[$dir/webp-png.tool.log]:-}" != 0 ] || ! why=$(render "$dir/webp-png.glb" "$dir/webp-png"); then
         reason[$vname]="SKIP (could not make or render its PNG-decoded reference: $(tail -n 1 "$dir/webp-png.tool.log" | cut -c1-120) $why) [$ext]"
         continue
       fi
@@ -302,11 +338,12 @@ for m in "${models[@]}"; do
 done
 [ ${#selected[@]} -gt 0 ] || { echo "FAIL: no model (RAYFORM_GLTF_VARIANTS_MODELS='${RAYFORM_GLTF_VARIANTS_MODELS:-}' matches none)"; exit 1; }
 
-# 1. OBJ -> .glb (obj2gltf, else rayform convert), at most $jobs at a time.
-#    Writes FOLDER/original.glb and FOLDER/conv (the note for the result lines).
+# 1. OBJ -> .glb (obj2gltf, every file in one node process: run_node_tools,
+#    lib.sh; else rayform convert). Writes FOLDER/original.glb and FOLDER/conv
+#    (the note for the result lines).
+declare -A obj2gltf_status=()
 convert_obj() {  # SOURCE FOLDER
-  mkdir -p "$2"
-  if (cd "$2" && timeout 120 "$bin/obj2gltf" -i "$1" -o "$2/original.glb") >"$2/obj2gltf.log" 2>&1 && [ -s "$2/original.glb" ]; then
+  if [ "${obj2gltf_status[$2/obj2gltf.log]:-}" = 0 ] && [ -s "$2/original.glb" ]; then
     echo " (via obj2gltf)" >"$2/conv"
   elif timeout 120 "$RAYFORM_BIN" convert "$1" "$2/original.glb" >"$2/convert.log" 2>&1; then
     echo " (via rayform convert: obj2gltf failed: $( (grep -m 1 -i 'error' "$2/obj2gltf.log" || tail -n 1 "$2/obj2gltf.log") | cut -c1-100))" >"$2/conv"
@@ -315,13 +352,23 @@ convert_obj() {  # SOURCE FOLDER
     echo "obj2gltf and rayform convert both failed: $(tail -n 1 "$2/convert.log" | cut -c1-160)" >"$2/conv"
   fi
 }
+: >"$tmp/obj2gltf.jobs"
 for ((k = 0; k < ${#selected[@]}; k++)); do
   IFS='|' read -r name src _ <<<"${selected[k]}"
   case $src in *.obj|*.OBJ) ;; *) continue ;; esac
-  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
-  convert_obj "$src" "$tmp/m$k" &
+  mkdir -p "$tmp/m$k"
+  printf '%s\t' "$tmp/m$k" "$tmp/m$k/obj2gltf.log" obj2gltf -i "$src" -o >>"$tmp/obj2gltf.jobs"
+  echo "$tmp/m$k/original.glb" >>"$tmp/obj2gltf.jobs"
 done
-wait
+if [ -s "$tmp/obj2gltf.jobs" ]; then
+  run_node_tools "$tmp/obj2gltf.jobs" 120
+  while IFS=$'\t' read -r status log; do obj2gltf_status[$log]=$status; done <"$tmp/obj2gltf.jobs.status"
+fi
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  IFS='|' read -r name src _ <<<"${selected[k]}"
+  case $src in *.obj|*.OBJ) ;; *) continue ;; esac
+  convert_obj "$src" "$tmp/m$k"
+done
 
 # 2. OBJ files that convert to the same glTF (but for names, paths and the
 #    generator string) are the same test: only the first one is run.
@@ -347,9 +394,10 @@ EOF
 declare -A duplicate_of=()
 while read -r k first; do duplicate_of[$k]=$first; done <"$tmp/duplicates.txt"
 
-# 3. The variants of every model, at most $jobs models at a time.
+# 3. The models to run (their original: FOLDER/original.glb for an OBJ).
+declare -A original=() note=()
 for ((k = 0; k < ${#selected[@]}; k++)); do
-  IFS='|' read -r name src pname pfile <<<"${selected[k]}"
+  IFS='|' read -r name src _ <<<"${selected[k]}"
   conv=""
   case $src in
     *.obj|*.OBJ)
@@ -362,8 +410,41 @@ for ((k = 0; k < ${#selected[@]}; k++)); do
       fi
       src=$tmp/m$k/original.glb ;;
   esac
+  original[$k]=$src note[$k]=$conv
+done
+
+# 4. Every model's tool calls, made first in $jobs node processes (run_node_tools,
+#    lib.sh; the models dealt to them in turn): a node process per model
+#    would start gltf-transform (about 1 s) again and again.
+lanes=0
+rm -f "$tmp"/lane*.jobs*
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  [ -n "${original[$k]:-}" ] || continue
+  mkdir -p "$tmp/m$k"; rm -f "$tmp/m$k/tools.jobs.status"
+  "$RAYFORM_BIN" info "${original[$k]}" >"$tmp/m$k/info.txt" 2>&1
+  grep -q '^bounds:' "$tmp/m$k/info.txt" || continue  # do_model reports it
+  declare -A reason=()
+  plan_variants "${original[$k]}" "$tmp/m$k"
+  unset reason
+  cat "$tmp/m$k/tools.jobs" >>"$tmp/lane$((lanes % jobs)).jobs"
+  lanes=$((lanes + 1))
+done
+for ((j = 0; j < jobs && j < lanes; j++)); do
+  run_node_tools "$tmp/lane$j.jobs" 1200 300 &
+done
+wait
+for ((j = 0; j < jobs && j < lanes; j++)); do
+  while IFS=$'\t' read -r status log; do
+    printf '%s\t%s\n' "$status" "$log" >>"${log%/*}/tools.jobs.status"
+  done <"$tmp/lane$j.jobs.status"
+done
+
+# 5. The variants of every model rendered and compared, at most $jobs models at a time.
+for ((k = 0; k < ${#selected[@]}; k++)); do
+  [ -n "${original[$k]:-}" ] || continue
+  IFS='|' read -r name _ pname pfile <<<"${selected[k]}"
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
-  do_model "$name" "$src" "$conv" "$tmp/m$k" "$pname" "$pfile" >"$tmp/result$k.txt" 2>&1 &
+  do_model "$name" "${original[$k]}" "${note[$k]}" "$tmp/m$k" "$pname" "$pfile" >"$tmp/result$k.txt" 2>&1 &
 done
 wait
 for ((k = 0; k < ${#selected[@]}; k++)); do cat "$tmp/result$k.txt"; done >"$tmp/results.txt"

@@ -55,6 +55,31 @@ find_node_tools() {
   export RAYFORM_NODE_TOOLS=$d
 }
 
+# run_node_tools JOBS LIMIT [CALL_LIMIT]: makes the npm tool calls queued in
+# the file JOBS (one a line: FOLDER<TAB>LOG<TAB>TOOL<TAB>ARGUMENT..., TOOL
+# gltf-transform, gltfpack or obj2gltf; see tests/tools/run_node_tools.mjs) in
+# one node process, for at most LIMIT seconds in all, instead of a node process
+# per call (about 1 s of start-up each). A call that process did not finish
+# (it died, ran out of time, or stopped at a failure) is then made with the
+# tool's own command in FOLDER, for at most CALL_LIMIT (default LIMIT)
+# seconds. Writes "STATUS<TAB>LOG" per call (0: the tool
+# succeeded) to JOBS.status; each call's output is in its LOG. Needs
+# RAYFORM_NODE_TOOLS (find_node_tools).
+run_node_tools() {
+  local jobs=$1 limit=$2 call_limit=${3:-$2} log
+  local -a job
+  local -A finished=()
+  timeout "$limit" node "$RAYFORM_SOURCE_DIR/tests/tools/run_node_tools.mjs" "$RAYFORM_NODE_TOOLS" "$jobs" \
+    >"$jobs.status" 2>"$jobs.log" </dev/null
+  while IFS=$'\t' read -r _ log; do finished[$log]=1; done <"$jobs.status"
+  while IFS=$'\t' read -r -a job; do
+    [ -z "${finished[${job[1]}]:-}" ] || continue
+    (cd "${job[0]}" && timeout "$call_limit" "$RAYFORM_NODE_TOOLS/node_modules/.bin/${job[2]}" "${job[@]:3}") \
+      >"${job[1]}" 2>&1 </dev/null
+    printf '%s\t%s\n' $? "${job[1]}" >>"$jobs.status"
+  done <"$jobs"
+}
+
 # Writes a small course scene to the file $1: one lit sphere, quick to render.
 write_sphere_scene() {
   cat >"$1" <<'EOF'
