@@ -33,6 +33,20 @@ void put_chunk(Sink& w, size_t chunk, const ChunkParse& parse) {
   }
 }
 
+// Puts the fields of a chunk's scan, its lines as where they are.
+template <class Sink>
+void put_scan(Sink& w, size_t chunk, const ChunkScan& scan) {
+  w.number(chunk);
+  w.number(scan.supported ? 1 : 0);
+  for (const Line* l : {&scan.first_mtllib, &scan.last_usemtl, &scan.last_group, &scan.last_smoothing}) {
+    w.number(l->at);
+    w.number(l->text.size());
+  }
+  w.array(scan.section_faces);
+  w.number(scan.vertex_lines);
+  w.array(scan.polygon_vertices_before);
+}
+
 // Whether no corner names a uv or a normal (then a corner is its position index alone).
 bool positions_only(const std::vector<tinyobj::index_t>& corners) {
   return std::all_of(corners.begin(), corners.end(),
@@ -113,7 +127,7 @@ class Writer : public Sink<Writer> {
 
 class Reader {
  public:
-  explicit Reader(const std::vector<std::byte>& in) : in_(in) {}
+  explicit Reader(const std::vector<std::byte>& in, size_t at = 0) : in_(in), at_(at) {}
 
   bool done() const { return at_ == in_.size(); }
   void raw(void* data, size_t n) {
@@ -214,6 +228,54 @@ std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::v
       r.runs(&s.mesh.material_ids, faces_at_most);
       r.runs(&s.mesh.smoothing_group_ids, faces_at_most);
     }
+  }
+  return read;
+}
+
+std::vector<std::byte> scan_bytes(const std::vector<size_t>& chunks, const std::vector<ChunkScan>& scans) {
+  Counter c;
+  for (size_t k : chunks) put_scan(c, k, scans[k]);
+  std::vector<std::byte> bytes(1 + c.bytes, std::byte{1});
+  Writer w(bytes.data() + 1);
+  for (size_t k : chunks) put_scan(w, k, scans[k]);
+  return bytes;
+}
+
+std::vector<std::byte> failed_scan_bytes(const std::string& what) {
+  std::vector<std::byte> bytes(1 + what.size(), std::byte{0});
+  if (!what.empty()) std::memcpy(bytes.data() + 1, what.data(), what.size());
+  return bytes;
+}
+
+bool scan_bytes_ok(const std::vector<std::byte>& bytes, std::string* failure) {
+  if (!bytes.empty() && bytes[0] == std::byte{1}) return true;
+  if (bytes.size() > 1) failure->assign(reinterpret_cast<const char*>(bytes.data()) + 1, bytes.size() - 1);
+  return false;
+}
+
+std::vector<size_t> read_scan_bytes(const std::vector<std::byte>& bytes, std::string_view text,
+                                    std::vector<ChunkScan>* scans) {
+  std::vector<size_t> read;
+  if (bytes.empty() || bytes[0] != std::byte{1}) throw Error("shared OBJ parse: not the bytes of scans (a bug)");
+  Reader r(bytes, 1);
+  while (!r.done()) {
+    const uint64_t chunk = r.number();
+    if (chunk >= scans->size())
+      throw Error("shared OBJ parse: scan of chunk " + std::to_string(chunk) + " of " + std::to_string(scans->size()) +
+                  " (a bug)");
+    ChunkScan& s = (*scans)[chunk];
+    s = ChunkScan{};
+    s.supported = r.number() != 0;
+    for (Line* l : {&s.first_mtllib, &s.last_usemtl, &s.last_group, &s.last_smoothing}) {
+      const uint64_t at = r.number(), size = r.number();
+      if (at > text.size() || size > text.size() - at) throw Error("shared OBJ parse: a line past the text (a bug)");
+      *l = size ? Line{text.substr(size_t(at), size_t(size)), size_t(at)} : Line{};
+    }
+    r.array(&s.section_faces);
+    if (s.section_faces.empty()) throw Error("shared OBJ parse: a scan without sections (a bug)");
+    s.vertex_lines = size_t(r.number());
+    r.array(&s.polygon_vertices_before);
+    read.push_back(size_t(chunk));
   }
   return read;
 }
