@@ -201,9 +201,10 @@ bool scan_shared(const WorkShare& share, std::string_view text, const std::vecto
 }
 
 // Each part parses the chunks that fall to it, and one exchange gives every
-// part every chunk's result. Nothing is thrown between the first chunk and
-// the exchange (a part that threw there would leave the others waiting):
-// what a chunk throws travels as its error, and every part then throws it.
+// part every other chunk's result. Nothing is thrown between the first
+// chunk and the exchange (a part that threw there would leave the others
+// waiting): what a chunk throws travels as its error, and every part then
+// throws it.
 void parse_shared(const WorkShare& share, const std::function<void(size_t)>& parse_chunk,
                   std::vector<ChunkResult>* results) {
   std::vector<ChunkResult>& r = *results;
@@ -224,22 +225,28 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
     size_t size = 0;
     for (size_t k : mine) size += obj::chunk_bytes_size(r[k]);
     bytes.reserve(size);
-    for (size_t k : mine) {
-      obj::append_chunk_bytes(k, r[k], &bytes);
-      r[k] = ChunkResult{};
-    }
+    for (size_t k : mine) obj::append_chunk_bytes(k, r[k], &bytes);
   } catch (...) {
     ChunkResult failed;
     failed.error = what_was_thrown();
     bytes.clear();
-    for (size_t k : mine) obj::append_chunk_bytes(k, failed, &bytes);
+    for (size_t k : mine) {
+      obj::append_chunk_bytes(k, failed, &bytes);
+      r[k] = failed;
+    }
   }
+  const size_t sent = bytes.size();
   std::vector<std::vector<std::byte>> all = share.exchange(std::move(bytes));
   if (all.size() != size_t(share.parts))
     throw Error("shared OBJ parse: " + std::to_string(all.size()) + " parts answered, not " +
                 std::to_string(share.parts) + " (a bug)");
+  // This part's own chunks are its results already (not read back from its bytes).
   std::vector<uint8_t> received(n, 0);
+  for (size_t k : mine) received[k] = 1;
+  if (all[size_t(share.part)].size() != sent)
+    throw Error("shared OBJ parse: part " + std::to_string(share.part) + "'s bytes came back changed (a bug)");
   for (size_t p = 0; p < all.size(); ++p) {
+    if (p == size_t(share.part)) continue;
     for (size_t k : obj::read_chunk_bytes(all[p], &r))
       if (chunk_part(k, share.parts) != int(p) || received[k]++)
         throw Error("shared OBJ parse: part " + std::to_string(p) + " sent chunk " + std::to_string(k) +
