@@ -205,8 +205,11 @@ bool scan_shared(const WorkShare& share, std::string_view text, const std::vecto
 // chunk and the exchange (a part that threw there would leave the others
 // waiting): what a chunk throws travels as its error, and every part then
 // throws it.
+//
+// `in_place`: the other chunks' face arrays are left in their bytes
+// (obj::read_chunk_bytes), which move to `kept`.
 void parse_shared(const WorkShare& share, const std::function<void(size_t)>& parse_chunk,
-                  std::vector<ChunkResult>* results) {
+                  std::vector<ChunkResult>* results, bool in_place, std::vector<std::vector<std::byte>>* kept) {
   std::vector<ChunkResult>& r = *results;
   const size_t n = r.size();
   std::vector<size_t> mine;
@@ -247,12 +250,13 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
     throw Error("shared OBJ parse: part " + std::to_string(share.part) + "'s bytes came back changed (a bug)");
   for (size_t p = 0; p < all.size(); ++p) {
     if (p == size_t(share.part)) continue;
-    for (size_t k : obj::read_chunk_bytes(all[p], &r))
+    for (size_t k : obj::read_chunk_bytes(all[p], &r, in_place))
       if (chunk_part(k, share.parts) != int(p) || received[k]++)
         throw Error("shared OBJ parse: part " + std::to_string(p) + " sent chunk " + std::to_string(k) +
                     ", not its own (a bug)");
-    std::vector<std::byte>().swap(all[p]);
+    if (!in_place) std::vector<std::byte>().swap(all[p]);
   }
+  if (in_place) *kept = std::move(all);
   for (size_t k = 0; k < n; ++k) {
     if (!received[k]) throw Error("shared OBJ parse: no part sent chunk " + std::to_string(k) + " (a bug)");
     if (!r[k].error.empty())
@@ -289,7 +293,13 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
                             /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
            keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
   };
-  if (share && share->shared()) parse_shared(*share, parse_chunk, &results);
+  // Shared and without polygons (whose splitting changes the arrays), the
+  // other parts' chunks are read straight into the joined arrays below.
+  const bool in_place = share && share->shared() && std::all_of(scans.begin(), scans.end(), [](const ChunkScan& s) {
+                          return s.polygon_vertices_before.empty();
+                        });
+  std::vector<std::vector<std::byte>> kept;  // the bytes in_place reads from
+  if (share && share->shared()) parse_shared(*share, parse_chunk, &results, in_place, &kept);
   else tbb::parallel_for(size_t(0), n, parse_chunk);
   if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
 
@@ -370,44 +380,66 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   for (size_t k = 0, groups_before = 0; k < n; groups_before += scans[k].section_faces.size() - 1, ++k)
     for (size_t j = 0, next = 0; j < scans[k].section_faces.size(); ++j)
       if (scans[k].section_faces[j] != 0) pieces.push_back({k, next++, groups_before + j});
+  // A piece's face arrays: in its chunk's shape, or still in its bytes.
+  auto shape_bytes = [&](const Piece& p) -> const obj::ShapeBytes* {
+    const ChunkResult& r = results[p.chunk];
+    return r.shape_bytes.empty() ? nullptr : &r.shape_bytes[p.shape];
+  };
   for (size_t first = 0; first < pieces.size();) {
     size_t last = first + 1, faces = 0, corners = 0;
     while (last < pieces.size() && pieces[last].section == pieces[first].section) ++last;
+    std::vector<size_t> part_corner, part_face;  // where each piece goes
     for (size_t i = first; i < last; ++i) {
-      const tinyobj::mesh_t& m = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
-      faces += m.num_face_vertices.size();
-      corners += m.indices.size();
+      part_corner.push_back(corners);
+      part_face.push_back(faces);
+      if (const obj::ShapeBytes* b = shape_bytes(pieces[i])) {
+        faces += b->faces;
+        corners += b->corners;
+      } else {
+        const tinyobj::mesh_t& m = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+        faces += m.num_face_vertices.size();
+        corners += m.indices.size();
+      }
     }
     o.shapes.push_back(std::move(results[pieces[first].chunk].shapes[pieces[first].shape]));
-    if (last > first + 1) {
-      // The section's arrays at their full size, every piece copied in at once.
+    if (last > first + 1 || shape_bytes(pieces[first])) {
+      // The section's arrays at their full size, every piece copied (or read) in at once.
       tinyobj::mesh_t& to = o.shapes.back().mesh;
       tinyobj::mesh_t head;  // the first piece's arrays
       head.indices.swap(to.indices);
       head.num_face_vertices.swap(to.num_face_vertices);
       head.material_ids.swap(to.material_ids);
       head.smoothing_group_ids.swap(to.smoothing_group_ids);
-      std::vector<const tinyobj::mesh_t*> parts{&head};
-      std::vector<size_t> part_corner{0}, part_face{0};  // where each part goes
-      for (size_t i = first + 1; i < last; ++i) {
-        part_corner.push_back(part_corner.back() + parts.back()->indices.size());
-        part_face.push_back(part_face.back() + parts.back()->num_face_vertices.size());
-        parts.push_back(&results[pieces[i].chunk].shapes[pieces[i].shape].mesh);
-      }
       to.indices.resize(corners);
       to.num_face_vertices.resize(faces);
       to.material_ids.resize(faces);
       to.smoothing_group_ids.resize(faces);
-      tbb::parallel_for(size_t(0), parts.size(), [&](size_t p) {
-        const tinyobj::mesh_t& m = *parts[p];
-        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(part_corner[p]));
-        const ptrdiff_t face = ptrdiff_t(part_face[p]);
-        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(), to.num_face_vertices.begin() + face);
-        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + face);
-        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(), to.smoothing_group_ids.begin() + face);
+      tbb::parallel_for(first, last, [&](size_t i) {
+        const size_t corner = part_corner[i - first], face = part_face[i - first];
+        if (const obj::ShapeBytes* b = shape_bytes(pieces[i])) {
+          obj::read_shape_bytes(*b, to.indices.data() + corner, to.num_face_vertices.data() + face,
+                                to.material_ids.data() + face, to.smoothing_group_ids.data() + face);
+          return;
+        }
+        const tinyobj::mesh_t& m = i == first ? head : results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(corner));
+        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(),
+                  to.num_face_vertices.begin() + ptrdiff_t(face));
+        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + ptrdiff_t(face));
+        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(),
+                  to.smoothing_group_ids.begin() + ptrdiff_t(face));
       });
     }
     first = last;
+  }
+  if (in_place) {
+    // The index check above saw only this part's chunks.
+    std::vector<uint8_t> ok(o.shapes.size(), 1);
+    tbb::parallel_for(size_t(0), o.shapes.size(), [&](size_t i) {
+      for (const tinyobj::index_t& ix : o.shapes[i].mesh.indices)
+        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) ok[i] = 0;
+    });
+    if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return false;
   }
   return true;
 }
