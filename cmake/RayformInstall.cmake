@@ -40,7 +40,8 @@ set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_accel_
                             importers/gltf/gltf_accessors.h importers/gltf/gltf_builder.h
                             importers/gltf/gltf_file_access.h importers/gltf/gltf_scene_builder.h
                             importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h
-                            importers/obj/obj_polygon_split.h importers/obj/obj_vertex_weld.h
+                            importers/obj/obj_parse_bytes.h importers/obj/obj_polygon_split.h
+                            importers/obj/obj_smooth_normals.h importers/obj/obj_vertex_weld.h
                             importers/file_bytes.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})

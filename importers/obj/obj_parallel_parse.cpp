@@ -1,5 +1,6 @@
 #include "rayform/importers/obj/obj_parallel_parse.h"
 
+#include "rayform/importers/obj/obj_chunk_scan.h"
 #include "rayform/importers/obj/obj_parse_bytes.h"
 #include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
@@ -17,107 +18,10 @@
 namespace rayform {
 namespace {
 
-// A line of the text (without its line end) and where it starts.
-struct Line {
-  std::string_view text;
-  size_t at = 0;
-  bool empty() const { return text.empty(); }
-};
-
-// What the scan of one chunk found.
-struct ChunkScan {
-  bool supported = true;
-  Line first_mtllib, last_usemtl, last_group, last_smoothing;
-  std::vector<size_t> section_faces{0};  // faces before the chunk's first g/o line, then after each
-  size_t vertex_lines = 0;               // `v` lines
-  // Per face of more than three corners, in order: the chunk's `v` lines before it.
-  std::vector<size_t> polygon_vertices_before;
-};
-
-bool is_space(char c) { return c == ' ' || c == '\t'; }
-
-// A face line (after "f "): its number of corners, or 0 when it has a '-',
-// a number of more than 9 digits (atoi could wrap it to a negative index) or
-// more corners than LoadObj's unsigned char count of a face's corners holds.
-int plain_face_corners(std::string_view s) {
-  if (s.find('-') != std::string_view::npos) return 0;
-  int corners = 0;
-  const size_t n = s.size();
-  for (size_t i = 0;; ++corners) {
-    while (i < n && is_space(s[i])) ++i;
-    if (i == n) break;
-    const size_t start = i;
-    while (i < n && !is_space(s[i])) ++i;
-    if (i - start < 10) continue;
-    for (size_t k = start, digits = 0; k < i; ++k) {
-      digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
-      if (digits > 9) return 0;
-    }
-  }
-  return corners <= 255 ? corners : 0;
-}
-
-// Calls visit(line, t) for each line of [begin, end) (its '\r\n' or '\n'
-// end taken off), t being the line without its leading blanks, as LoadObj
-// reads it, until visit returns false.
-template <class Visit>
-void for_each_line(std::string_view text, size_t begin, size_t end, Visit visit) {
-  for (size_t p = begin; p < end;) {
-    const char* nl = static_cast<const char*>(std::memchr(text.data() + p, '\n', end - p));
-    const size_t line_end = nl ? size_t(nl - text.data()) : end;
-    size_t e = line_end;
-    if (e > p && text[e - 1] == '\r') --e;
-    const Line line{text.substr(p, e - p), p};
-    p = nl ? line_end + 1 : end;
-    std::string_view t = line.text;
-    size_t lead = 0;
-    while (lead < t.size() && is_space(t[lead])) ++lead;
-    t.remove_prefix(lead);
-    if (!visit(line, t)) return;
-  }
-}
-
-bool is_vertex_line(std::string_view t) { return t.size() > 1 && t[0] == 'v' && is_space(t[1]); }
-
-// Sorts each line of [begin, end) by the tests LoadObj makes, in its order.
-ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
-  ChunkScan scan;
-  const std::string_view chunk = text.substr(begin, end - begin);
-  if (chunk.find('\0') != std::string_view::npos) scan.supported = false;
-  for (size_t r = chunk.find('\r'); scan.supported && r != std::string_view::npos; r = chunk.find('\r', r + 1))
-    if (r + 1 == chunk.size() || chunk[r + 1] != '\n') scan.supported = false;  // a lone '\r' ends a line too
-  if (!scan.supported) return scan;
-  for_each_line(text, begin, end, [&](const Line& line, std::string_view t) {
-    auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
-    if (t.empty() || t[0] == '#') return true;
-    if (is_vertex_line(t)) {
-      ++scan.vertex_lines;
-      return true;
-    }
-    if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) return true;
-    if ((t[0] == 'v' && at(1) == 'w' && is_space(at(2))) || ((t[0] == 'l' || t[0] == 'p') && is_space(at(1)))) {
-      scan.supported = false;  // skin weights, lines, points
-    } else if (t[0] == 'f' && is_space(at(1))) {
-      const int corners = plain_face_corners(t.substr(2));
-      if (corners < 3) scan.supported = false;
-      if (corners > 3) scan.polygon_vertices_before.push_back(scan.vertex_lines);
-      ++scan.section_faces.back();
-    } else if (t.compare(0, 6, "usemtl") == 0) {
-      scan.last_usemtl = line;
-    } else if (t.compare(0, 6, "mtllib") == 0 && is_space(at(6))) {
-      if (scan.first_mtllib.empty()) scan.first_mtllib = line;
-    } else if ((t[0] == 'g' || t[0] == 'o') && is_space(at(1))) {
-      scan.last_group = line;
-      scan.section_faces.push_back(0);
-    } else if (t[0] == 't' && is_space(at(1))) {
-      scan.supported = false;  // tags
-    } else if (t[0] == 's' && is_space(at(1))) {
-      scan.last_smoothing = line;
-    }
-    return scan.supported;
-  });
-  return scan;
-}
+using obj::ChunkScan;
+using obj::for_each_line;
+using obj::is_vertex_line;
+using obj::Line;
 
 // The chunks: about `chunk_bytes` each, cut after a '\n'.
 std::vector<size_t> chunk_starts(std::string_view text, size_t chunk_bytes) {
@@ -255,12 +159,57 @@ std::string what_was_thrown() {
   }
 }
 
+// Each part scans the chunks that fall to it, and one exchange gives every
+// part every chunk's scan; false on every part when a chunk is not
+// supported. What a part throws travels as its message, and every part
+// then throws it.
+bool scan_shared(const WorkShare& share, std::string_view text, const std::vector<size_t>& starts,
+                 std::vector<ChunkScan>* scans) {
+  std::vector<ChunkScan>& s = *scans;
+  const size_t n = s.size();
+  std::vector<std::byte> bytes;
+  try {
+    std::vector<size_t> mine;
+    for (size_t k = 0; k < n; ++k)
+      if (chunk_part(k, share.parts) == share.part) mine.push_back(k);
+    tbb::parallel_for(size_t(0), mine.size(),
+                      [&](size_t i) { s[mine[i]] = obj::scan_chunk(text, starts[mine[i]], starts[mine[i] + 1]); });
+    bytes = obj::scan_bytes(mine, s);
+  } catch (...) {
+    bytes = obj::failed_scan_bytes(what_was_thrown());
+  }
+  std::vector<std::vector<std::byte>> all = share.exchange(std::move(bytes));
+  if (all.size() != size_t(share.parts))
+    throw Error("shared OBJ parse: " + std::to_string(all.size()) + " parts answered, not " +
+                std::to_string(share.parts) + " (a bug)");
+  for (size_t p = 0; p < all.size(); ++p) {
+    std::string failure;
+    if (!obj::scan_bytes_ok(all[p], &failure))
+      throw Error("scanning OBJ text in chunks: part " + std::to_string(p) + " failed" +
+                  (failure.empty() ? "" : ": " + failure));
+  }
+  std::vector<uint8_t> received(n, 0);
+  for (size_t p = 0; p < all.size(); ++p) {
+    for (size_t k : obj::read_scan_bytes(all[p], text, &s))
+      if (chunk_part(k, share.parts) != int(p) || received[k]++)
+        throw Error("shared OBJ parse: part " + std::to_string(p) + " sent the scan of chunk " + std::to_string(k) +
+                    ", not its own (a bug)");
+  }
+  for (size_t k = 0; k < n; ++k)
+    if (!received[k]) throw Error("shared OBJ parse: no part sent the scan of chunk " + std::to_string(k) + " (a bug)");
+  return std::all_of(s.begin(), s.end(), [](const ChunkScan& c) { return c.supported; });
+}
+
 // Each part parses the chunks that fall to it, and one exchange gives every
-// part every chunk's result. Nothing is thrown between the first chunk and
-// the exchange (a part that threw there would leave the others waiting):
-// what a chunk throws travels as its error, and every part then throws it.
+// part every other chunk's result. Nothing is thrown between the first
+// chunk and the exchange (a part that threw there would leave the others
+// waiting): what a chunk throws travels as its error, and every part then
+// throws it.
+//
+// `in_place`: the other chunks' face arrays are left in their bytes
+// (obj::read_chunk_bytes), which move to `kept`.
 void parse_shared(const WorkShare& share, const std::function<void(size_t)>& parse_chunk,
-                  std::vector<ChunkResult>* results) {
+                  std::vector<ChunkResult>* results, bool in_place, std::vector<std::vector<std::byte>>* kept) {
   std::vector<ChunkResult>& r = *results;
   const size_t n = r.size();
   std::vector<size_t> mine;
@@ -279,28 +228,35 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
     size_t size = 0;
     for (size_t k : mine) size += obj::chunk_bytes_size(r[k]);
     bytes.reserve(size);
-    for (size_t k : mine) {
-      obj::append_chunk_bytes(k, r[k], &bytes);
-      r[k] = ChunkResult{};
-    }
+    for (size_t k : mine) obj::append_chunk_bytes(k, r[k], &bytes);
   } catch (...) {
     ChunkResult failed;
     failed.error = what_was_thrown();
     bytes.clear();
-    for (size_t k : mine) obj::append_chunk_bytes(k, failed, &bytes);
+    for (size_t k : mine) {
+      obj::append_chunk_bytes(k, failed, &bytes);
+      r[k] = failed;
+    }
   }
+  const size_t sent = bytes.size();
   std::vector<std::vector<std::byte>> all = share.exchange(std::move(bytes));
   if (all.size() != size_t(share.parts))
     throw Error("shared OBJ parse: " + std::to_string(all.size()) + " parts answered, not " +
                 std::to_string(share.parts) + " (a bug)");
+  // This part's own chunks are its results already (not read back from its bytes).
   std::vector<uint8_t> received(n, 0);
+  for (size_t k : mine) received[k] = 1;
+  if (all[size_t(share.part)].size() != sent)
+    throw Error("shared OBJ parse: part " + std::to_string(share.part) + "'s bytes came back changed (a bug)");
   for (size_t p = 0; p < all.size(); ++p) {
-    for (size_t k : obj::read_chunk_bytes(all[p], &r))
+    if (p == size_t(share.part)) continue;
+    for (size_t k : obj::read_chunk_bytes(all[p], &r, in_place))
       if (chunk_part(k, share.parts) != int(p) || received[k]++)
         throw Error("shared OBJ parse: part " + std::to_string(p) + " sent chunk " + std::to_string(k) +
                     ", not its own (a bug)");
-    std::vector<std::byte>().swap(all[p]);
+    if (!in_place) std::vector<std::byte>().swap(all[p]);
   }
+  if (in_place) *kept = std::move(all);
   for (size_t k = 0; k < n; ++k) {
     if (!received[k]) throw Error("shared OBJ parse: no part sent chunk " + std::to_string(k) + " (a bug)");
     if (!r[k].error.empty())
@@ -316,8 +272,12 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   const std::vector<size_t> starts = chunk_starts(text, std::max<size_t>(chunk_bytes, 1));
   const size_t n = starts.size() - 1;
   std::vector<ChunkScan> scans(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t k) { scans[k] = scan_chunk(text, starts[k], starts[k + 1]); });
-  if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
+  if (share && share->shared()) {
+    if (!scan_shared(*share, text, starts, &scans)) return false;
+  } else {
+    tbb::parallel_for(size_t(0), n, [&](size_t k) { scans[k] = obj::scan_chunk(text, starts[k], starts[k + 1]); });
+    if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
+  }
   const std::vector<std::string> prefixes = chunk_prefixes(scans);
 
   // Each chunk with its polygons left whole (split below, once every position is known).
@@ -333,7 +293,13 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
                             /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
            keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
   };
-  if (share && share->shared()) parse_shared(*share, parse_chunk, &results);
+  // Shared and without polygons (whose splitting changes the arrays), the
+  // other parts' chunks are read straight into the joined arrays below.
+  const bool in_place = share && share->shared() && std::all_of(scans.begin(), scans.end(), [](const ChunkScan& s) {
+                          return s.polygon_vertices_before.empty();
+                        });
+  std::vector<std::vector<std::byte>> kept;  // the bytes in_place reads from
+  if (share && share->shared()) parse_shared(*share, parse_chunk, &results, in_place, &kept);
   else tbb::parallel_for(size_t(0), n, parse_chunk);
   if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
 
@@ -414,44 +380,66 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   for (size_t k = 0, groups_before = 0; k < n; groups_before += scans[k].section_faces.size() - 1, ++k)
     for (size_t j = 0, next = 0; j < scans[k].section_faces.size(); ++j)
       if (scans[k].section_faces[j] != 0) pieces.push_back({k, next++, groups_before + j});
+  // A piece's face arrays: in its chunk's shape, or still in its bytes.
+  auto shape_bytes = [&](const Piece& p) -> const obj::ShapeBytes* {
+    const ChunkResult& r = results[p.chunk];
+    return r.shape_bytes.empty() ? nullptr : &r.shape_bytes[p.shape];
+  };
   for (size_t first = 0; first < pieces.size();) {
     size_t last = first + 1, faces = 0, corners = 0;
     while (last < pieces.size() && pieces[last].section == pieces[first].section) ++last;
+    std::vector<size_t> part_corner, part_face;  // where each piece goes
     for (size_t i = first; i < last; ++i) {
-      const tinyobj::mesh_t& m = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
-      faces += m.num_face_vertices.size();
-      corners += m.indices.size();
+      part_corner.push_back(corners);
+      part_face.push_back(faces);
+      if (const obj::ShapeBytes* b = shape_bytes(pieces[i])) {
+        faces += b->faces;
+        corners += b->corners;
+      } else {
+        const tinyobj::mesh_t& m = results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+        faces += m.num_face_vertices.size();
+        corners += m.indices.size();
+      }
     }
     o.shapes.push_back(std::move(results[pieces[first].chunk].shapes[pieces[first].shape]));
-    if (last > first + 1) {
-      // The section's arrays at their full size, every piece copied in at once.
+    if (last > first + 1 || shape_bytes(pieces[first])) {
+      // The section's arrays at their full size, every piece copied (or read) in at once.
       tinyobj::mesh_t& to = o.shapes.back().mesh;
       tinyobj::mesh_t head;  // the first piece's arrays
       head.indices.swap(to.indices);
       head.num_face_vertices.swap(to.num_face_vertices);
       head.material_ids.swap(to.material_ids);
       head.smoothing_group_ids.swap(to.smoothing_group_ids);
-      std::vector<const tinyobj::mesh_t*> parts{&head};
-      std::vector<size_t> part_corner{0}, part_face{0};  // where each part goes
-      for (size_t i = first + 1; i < last; ++i) {
-        part_corner.push_back(part_corner.back() + parts.back()->indices.size());
-        part_face.push_back(part_face.back() + parts.back()->num_face_vertices.size());
-        parts.push_back(&results[pieces[i].chunk].shapes[pieces[i].shape].mesh);
-      }
       to.indices.resize(corners);
       to.num_face_vertices.resize(faces);
       to.material_ids.resize(faces);
       to.smoothing_group_ids.resize(faces);
-      tbb::parallel_for(size_t(0), parts.size(), [&](size_t p) {
-        const tinyobj::mesh_t& m = *parts[p];
-        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(part_corner[p]));
-        const ptrdiff_t face = ptrdiff_t(part_face[p]);
-        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(), to.num_face_vertices.begin() + face);
-        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + face);
-        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(), to.smoothing_group_ids.begin() + face);
+      tbb::parallel_for(first, last, [&](size_t i) {
+        const size_t corner = part_corner[i - first], face = part_face[i - first];
+        if (const obj::ShapeBytes* b = shape_bytes(pieces[i])) {
+          obj::read_shape_bytes(*b, to.indices.data() + corner, to.num_face_vertices.data() + face,
+                                to.material_ids.data() + face, to.smoothing_group_ids.data() + face);
+          return;
+        }
+        const tinyobj::mesh_t& m = i == first ? head : results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
+        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(corner));
+        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(),
+                  to.num_face_vertices.begin() + ptrdiff_t(face));
+        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + ptrdiff_t(face));
+        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(),
+                  to.smoothing_group_ids.begin() + ptrdiff_t(face));
       });
     }
     first = last;
+  }
+  if (in_place) {
+    // The index check above saw only this part's chunks.
+    std::vector<uint8_t> ok(o.shapes.size(), 1);
+    tbb::parallel_for(size_t(0), o.shapes.size(), [&](size_t i) {
+      for (const tinyobj::index_t& ix : o.shapes[i].mesh.indices)
+        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) ok[i] = 0;
+    });
+    if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return false;
   }
   return true;
 }

@@ -2,9 +2,10 @@
 // result of one tinyobj::LoadObj(triangulate = true, default_vcols_fallback =
 // false) over the whole text, or not at all.
 //
-// The text is cut at line ends into chunks; a quick scan of each chunk (line
-// kinds only, no numbers) finds the state lines (mtllib, usemtl, g, o, s), the
-// `v` lines and what the stitching cannot reproduce. Each chunk is then
+// The text is cut at line ends into chunks; a quick scan of each chunk
+// (obj_chunk_scan.h: line kinds only, no numbers) finds the state lines
+// (mtllib, usemtl, g, o, s), the `v` lines and what the stitching cannot
+// reproduce. Each chunk is then
 // parsed by LoadObj, its polygons left whole, behind copies of the state
 // lines in force at its start (the first mtllib, the last usemtl, g/o and s
 // before it, in file order), so that its faces get the material, smoothing
@@ -53,13 +54,14 @@ using MaterialReaderFactory = std::function<std::unique_ptr<tinyobj::MaterialRea
 // LoadObj over the whole text: then parse it that way.
 //
 // With a `share` of several parts (rayform/scene/work_share.h), every part
-// calls this with the same text, readers and chunk size; each scans the
-// whole text but parses only the chunks that fall to it (every parts-th
-// one), and one exchange gives every part
-// every chunk's result (obj_parse_bytes.h), from which each joins the same
-// ObjParse as without a share, or returns false alike. The exchange is made
-// unless the scan alone falls back (before it, every part does the same).
-// Throws rayform::Error on every part when a chunk's parse threw on one.
+// calls this with the same text, readers and chunk size; each scans and
+// parses only the chunks that fall to it (every parts-th one). A first
+// exchange gives every part every chunk's scan (obj_chunk_scan.h), from
+// which each knows the state lines in force at its chunks and whether all
+// return false (then before any parse); a second one every chunk's result
+// (obj_parse_bytes.h), from which each joins the same ObjParse as without a
+// share, or returns false alike. Throws rayform::Error on every part when a
+// chunk's scan or parse threw on one.
 bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
                        const WorkShare* share = nullptr);
 

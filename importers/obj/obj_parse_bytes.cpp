@@ -33,6 +33,20 @@ void put_chunk(Sink& w, size_t chunk, const ChunkParse& parse) {
   }
 }
 
+// Puts the fields of a chunk's scan, its lines as where they are.
+template <class Sink>
+void put_scan(Sink& w, size_t chunk, const ChunkScan& scan) {
+  w.number(chunk);
+  w.number(scan.supported ? 1 : 0);
+  for (const Line* l : {&scan.first_mtllib, &scan.last_usemtl, &scan.last_group, &scan.last_smoothing}) {
+    w.number(l->at);
+    w.number(l->text.size());
+  }
+  w.array(scan.section_faces);
+  w.number(scan.vertex_lines);
+  w.array(scan.polygon_vertices_before);
+}
+
 // Whether no corner names a uv or a normal (then a corner is its position index alone).
 bool positions_only(const std::vector<tinyobj::index_t>& corners) {
   return std::all_of(corners.begin(), corners.end(),
@@ -113,7 +127,7 @@ class Writer : public Sink<Writer> {
 
 class Reader {
  public:
-  explicit Reader(const std::vector<std::byte>& in) : in_(in) {}
+  explicit Reader(const std::vector<std::byte>& in, size_t at = 0) : in_(in), at_(at) {}
 
   bool done() const { return at_ == in_.size(); }
   void raw(void* data, size_t n) {
@@ -152,6 +166,38 @@ class Reader {
       c.texcoord_index = c.normal_index = -1;
     }
   }
+  const std::byte* here() const { return in_.data() + at_; }
+  void skip(size_t n) {
+    if (n > in_.size() - at_) throw Error("shared OBJ parse: the bytes of a part end early (a bug)");
+    at_ += n;
+  }
+  // A shape's corners left in the bytes: where they start, how many, and
+  // whether as position indices alone.
+  void corners_in_place(ShapeBytes* s) {
+    const uint64_t positions = number();
+    if (positions > 1) throw Error("shared OBJ parse: bad corner kind (a bug)");
+    s->positions_only = positions == 1;
+    const size_t size = s->positions_only ? sizeof(int) : sizeof(tinyobj::index_t);
+    s->corners = count(size);
+    s->corner_bytes = here();
+    skip(s->corners * size);
+  }
+  // Runs of T left in the bytes, of `total` values in all (or, with total
+  // null, at most `most`, their sum stored there).
+  template <class T>
+  void runs_in_place(const std::byte** at, size_t* run_count, size_t most, size_t* total) {
+    const size_t n = count(sizeof(T) + sizeof(uint64_t));
+    *at = here();
+    *run_count = n;
+    size_t sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+      skip(sizeof(T));
+      const uint64_t length = number();
+      if (length > most - sum) throw Error("shared OBJ parse: more faces than corners (a bug)");
+      sum += size_t(length);
+    }
+    *total = sum;
+  }
   // Runs of at most `most` values in all.
   template <class T>
   void runs(std::vector<T>* v, size_t most) {
@@ -186,7 +232,8 @@ void append_chunk_bytes(size_t chunk, const ChunkParse& parse, std::vector<std::
   put_chunk(w, chunk, parse);
 }
 
-std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::vector<ChunkParse>* chunks) {
+std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::vector<ChunkParse>* chunks,
+                                     bool in_place) {
   std::vector<size_t> read;
   Reader r(bytes);
   while (!r.done()) {
@@ -206,14 +253,107 @@ std::vector<size_t> read_chunk_bytes(const std::vector<std::byte>& bytes, std::v
     r.array(&p.attrib.texcoords);
     r.array(&p.attrib.colors);
     p.shapes.resize(r.count(6 * sizeof(uint64_t)));  // a shape takes at least its six sizes
-    for (tinyobj::shape_t& s : p.shapes) {
+    if (in_place) p.shape_bytes.resize(p.shapes.size());
+    for (size_t i = 0; i < p.shapes.size(); ++i) {
+      tinyobj::shape_t& s = p.shapes[i];
       s.name = r.text();
+      if (in_place) {
+        ShapeBytes& b = p.shape_bytes[i];
+        r.corners_in_place(&b);
+        size_t faces = 0;
+        r.runs_in_place<unsigned char>(&b.face_corner_runs, &b.face_corner_run_count, b.corners, &b.faces);
+        r.runs_in_place<int>(&b.material_runs, &b.material_run_count, b.faces, &faces);
+        if (faces != b.faces) throw Error("shared OBJ parse: a shape's face arrays differ in length (a bug)");
+        r.runs_in_place<unsigned int>(&b.smoothing_runs, &b.smoothing_run_count, b.faces, &faces);
+        if (faces != b.faces) throw Error("shared OBJ parse: a shape's face arrays differ in length (a bug)");
+        continue;
+      }
       r.corners(&s.mesh.indices);
       const size_t faces_at_most = s.mesh.indices.size();
       r.runs(&s.mesh.num_face_vertices, faces_at_most);
       r.runs(&s.mesh.material_ids, faces_at_most);
       r.runs(&s.mesh.smoothing_group_ids, faces_at_most);
     }
+  }
+  return read;
+}
+
+namespace {
+
+// Runs of (T, uint64 length) at `at` written out to `to`.
+template <class T>
+void write_runs(const std::byte* at, size_t runs, T* to) {
+  for (size_t i = 0; i < runs; ++i) {
+    T value;
+    uint64_t length;
+    std::memcpy(&value, at, sizeof value);
+    std::memcpy(&length, at + sizeof value, sizeof length);
+    at += sizeof value + sizeof length;
+    to = std::fill_n(to, size_t(length), value);
+  }
+}
+
+}  // namespace
+
+void read_shape_bytes(const ShapeBytes& s, tinyobj::index_t* corners, unsigned char* face_corners, int* materials,
+                      unsigned int* smoothing) {
+  if (s.positions_only) {
+    for (size_t c = 0; c < s.corners; ++c) {
+      std::memcpy(&corners[c].vertex_index, s.corner_bytes + c * sizeof(int), sizeof(int));
+      corners[c].texcoord_index = corners[c].normal_index = -1;
+    }
+  } else if (s.corners) {
+    std::memcpy(corners, s.corner_bytes, s.corners * sizeof(tinyobj::index_t));
+  }
+  write_runs(s.face_corner_runs, s.face_corner_run_count, face_corners);
+  write_runs(s.material_runs, s.material_run_count, materials);
+  write_runs(s.smoothing_runs, s.smoothing_run_count, smoothing);
+}
+
+std::vector<std::byte> scan_bytes(const std::vector<size_t>& chunks, const std::vector<ChunkScan>& scans) {
+  Counter c;
+  for (size_t k : chunks) put_scan(c, k, scans[k]);
+  std::vector<std::byte> bytes(1 + c.bytes, std::byte{1});
+  Writer w(bytes.data() + 1);
+  for (size_t k : chunks) put_scan(w, k, scans[k]);
+  return bytes;
+}
+
+std::vector<std::byte> failed_scan_bytes(const std::string& what) {
+  std::vector<std::byte> bytes(1 + what.size(), std::byte{0});
+  if (!what.empty()) std::memcpy(bytes.data() + 1, what.data(), what.size());
+  return bytes;
+}
+
+bool scan_bytes_ok(const std::vector<std::byte>& bytes, std::string* failure) {
+  if (!bytes.empty() && bytes[0] == std::byte{1}) return true;
+  if (bytes.size() > 1) failure->assign(reinterpret_cast<const char*>(bytes.data()) + 1, bytes.size() - 1);
+  return false;
+}
+
+std::vector<size_t> read_scan_bytes(const std::vector<std::byte>& bytes, std::string_view text,
+                                    std::vector<ChunkScan>* scans) {
+  std::vector<size_t> read;
+  if (bytes.empty() || bytes[0] != std::byte{1}) throw Error("shared OBJ parse: not the bytes of scans (a bug)");
+  Reader r(bytes, 1);
+  while (!r.done()) {
+    const uint64_t chunk = r.number();
+    if (chunk >= scans->size())
+      throw Error("shared OBJ parse: scan of chunk " + std::to_string(chunk) + " of " + std::to_string(scans->size()) +
+                  " (a bug)");
+    ChunkScan& s = (*scans)[chunk];
+    s = ChunkScan{};
+    s.supported = r.number() != 0;
+    for (Line* l : {&s.first_mtllib, &s.last_usemtl, &s.last_group, &s.last_smoothing}) {
+      const uint64_t at = r.number(), size = r.number();
+      if (at > text.size() || size > text.size() - at) throw Error("shared OBJ parse: a line past the text (a bug)");
+      *l = size ? Line{text.substr(size_t(at), size_t(size)), size_t(at)} : Line{};
+    }
+    r.array(&s.section_faces);
+    if (s.section_faces.empty()) throw Error("shared OBJ parse: a scan without sections (a bug)");
+    s.vertex_lines = size_t(r.number());
+    r.array(&s.polygon_vertices_before);
+    read.push_back(size_t(chunk));
   }
   return read;
 }

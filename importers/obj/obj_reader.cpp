@@ -5,6 +5,7 @@
 #include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
 #include "rayform/importers/obj/obj_side_files.h"
+#include "rayform/importers/obj/obj_smooth_normals.h"
 #include "rayform/importers/obj/obj_vertex_weld.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
@@ -14,7 +15,6 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -383,32 +383,6 @@ class ObjSceneBuilder {
 
   // ---- geometry ----------------------------------------------------------
 
-  // A triangle's unit normal weighted by its angle at each corner (where the
-  // triangle and the corner's edges have a length): what each corner adds to
-  // its position's smooth normal.
-  static void angle_weighted_normals(const std::vector<tinyobj::index_t>& idx, size_t start, bool triangle,
-                                     const tinyobj::attrib_t& a, vec3* weighted, uint8_t* contributes) {
-    contributes[0] = contributes[1] = contributes[2] = 0;
-    if (!triangle) return;
-    vec3 p[3];
-    for (int k = 0; k < 3; ++k) {
-      const size_t v = size_t(idx[start + k].vertex_index);
-      p[k] = vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]);
-    }
-    vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-    float len = glm::length(n);
-    if (!(len > 0.f) || !std::isfinite(len)) return;
-    n /= len;
-    for (int k = 0; k < 3; ++k) {
-      vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
-      float l1 = glm::length(e1), l2 = glm::length(e2);
-      if (!(l1 > 0.f && l2 > 0.f)) continue;
-      float c = std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.f, 1.f);
-      weighted[k] = std::acos(c) * n;
-      contributes[k] = 1;
-    }
-  }
-
   int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
     const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
     const size_t faces = s.mesh.num_face_vertices.size();
@@ -444,38 +418,13 @@ class ObjSceneBuilder {
     const bool generate = !all_normals;
     const bool per_vertex_normals = !(options_.flat && !any_normal);
 
-    // Smooth generated normals: per position, the sum of the unit normals of
-    // the faces around it, each weighted by the face's angle at that corner
-    // (Thuermer & Wuethrich), so that the result does not depend on how a
-    // polygon was split into triangles.
+    // Smooth generated normals (obj_smooth_normals.h): per position, shared
+    // among the parts of a large mesh's read.
     const size_t position_count = a.vertices.size() / 3;
     std::vector<vec3> smooth;  // per position; zero where no face contributes
     if (generate && !options_.flat) {
-      smooth.assign(position_count, vec3(0.f));
-      // The weighted normals of a block of faces at once, then summed per
-      // position in face order (the same float sums as one loop would make).
-      constexpr size_t block = size_t(1) << 16;
-      std::vector<vec3> weighted(3 * std::min(faces, block));
-      std::vector<uint8_t> contributes(weighted.size());
-      const int ranges = tbb::this_task_arena::max_concurrency();
-      for (size_t first = 0; first < faces; first += block) {
-        const size_t last = std::min(faces, first + block);
-        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1024), [&](const tbb::blocked_range<size_t>& r) {
-          for (size_t f = r.begin(); f < r.end(); ++f)
-            angle_weighted_normals(idx, face_start[f], s.mesh.num_face_vertices[f] == 3, a, &weighted[3 * (f - first)],
-                                   &contributes[3 * (f - first)]);
-        });
-        // Summed by position ranges at once: each range's sums in face order.
-        tbb::parallel_for(0, ranges, [&](int range) {
-          const size_t lo = position_count * size_t(range) / size_t(ranges),
-                       hi = position_count * size_t(range + 1) / size_t(ranges);
-          for (size_t f = first; f < last; ++f)
-            for (int k = 0; k < 3; ++k) {
-              const size_t v = size_t(idx[face_start[f] + k].vertex_index);
-              if (v >= lo && v < hi && contributes[3 * (f - first) + k]) smooth[v] += weighted[3 * (f - first) + k];
-            }
-        });
-      }
+      const WorkShare* share = options_.share && faces >= options_.share_min_faces ? options_.share : nullptr;
+      smooth = obj::smooth_normal_sums(a.vertices, {idx, face_start, s.mesh.num_face_vertices}, share);
     }
 
     Mesh mesh;

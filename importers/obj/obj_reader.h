@@ -49,6 +49,12 @@ struct ObjReadOptions {
   // with the Scene one reading alone makes. Every part must read the file
   // with the same options. Null or one part: not shared.
   const WorkShare* share = nullptr;
+  // With a share, the smooth normals of a mesh of at least this many faces
+  // are generated shared among the parts too (obj_smooth_normals.h). Smaller
+  // ones each part makes whole, where an exchange would cost about what it
+  // saves (the shared BVH builds' threshold, BvhBuildOptions::
+  // share_min_triangles; not measured for the normals on their own).
+  size_t share_min_faces = size_t(1) << 15;
 };
 
 // Reads an OBJ file (and the .mtl files it names). Warnings, if wanted, are

@@ -65,9 +65,10 @@ std::vector<PartResult> parse_shared(const std::string& text, size_t chunk_bytes
 // The text shared among 2 and 3 parts in chunks of each size: every part
 // returns what the parse alone returns and, where that parsed, its ObjParse
 // field by field, which is also one LoadObj's (its warnings aside: the
-// reader keeps each once). Whether the parts exchanged: `exchanged`.
+// reader keeps each once). The exchanges each part made: `exchanges` (the
+// scans', then the parses' unless the scans fall back).
 void expect_shared_same(const std::string& text, const std::vector<size_t>& chunk_sizes, bool chunked,
-                        bool exchanged = true) {
+                        int exchanges = 2) {
   const ObjParse whole = test::load_obj_whole(text);
   for (size_t chunk : chunk_sizes) {
     ObjParse alone;
@@ -79,7 +80,7 @@ void expect_shared_same(const std::string& text, const std::vector<size_t>& chun
             "part " + std::to_string(p) + " of " + std::to_string(parts) + ", chunks of " + std::to_string(chunk);
         const PartResult& r = results[size_t(p)];
         EXPECT_EQ(r.error, "") << what;
-        EXPECT_EQ(r.exchanges, exchanged ? 1 : 0) << what;
+        EXPECT_EQ(r.exchanges, exchanges) << what;
         ASSERT_EQ(r.chunked, chunked) << what;
         if (!chunked) continue;
         test::expect_same_shapes(alone, r.parse, what + " vs alone");
@@ -106,8 +107,8 @@ TEST(ObjSharedParse, QuadsAndPolygons) {
 
 TEST(ObjSharedParse, FallsBackOnEveryPart) {
   const std::string head = "mtllib m.mtl\n" + test::grid_attributes(3);
-  // The scan finds it on every part before any parse: no exchange.
-  expect_shared_same(head + "f -9 -8 -6\nf 1 2 3\n", {16}, false, /*exchanged*/ false);
+  // The scans find it: every part falls back after their exchange, before any parse.
+  expect_shared_same(head + "f -9 -8 -6\nf 1 2 3\n", {16}, false, /*exchanges*/ 1);
   // Found once the chunks are parsed: after the exchange, alike on every part.
   expect_shared_same(head + "usemtl red\nf 1 2 5 10\nv 9 9 9\nusemtl green\nf 1 2 3\n", {16}, false);
 }
@@ -125,7 +126,7 @@ TEST(ObjSharedParse, BadFaceInOnePartsChunks) {
     const std::vector<PartResult> results = parse_shared(zero, 64, parts);
     for (int p = 0; p < parts; ++p) {
       EXPECT_FALSE(results[size_t(p)].chunked) << "part " << p << " of " << parts;
-      EXPECT_EQ(results[size_t(p)].exchanges, 1) << "part " << p << " of " << parts;
+      EXPECT_EQ(results[size_t(p)].exchanges, 2) << "part " << p << " of " << parts;
     }
   }
 }
@@ -142,27 +143,74 @@ TEST(ObjSharedParse, ThrowOnOnePartThrowsOnEvery) {
     });
     for (int p = 0; p < parts; ++p) {
       const PartResult& r = results[size_t(p)];
-      EXPECT_EQ(r.exchanges, 1) << "part " << p << " of " << parts;
+      EXPECT_EQ(r.exchanges, 2) << "part " << p << " of " << parts;
       EXPECT_NE(r.error.find("part " + std::to_string(failing) + " failed: no reader here"), std::string::npos)
           << "part " << p << " of " << parts << ": " << r.error;
     }
   }
 }
 
-// Bytes that do not parse are a bug, reported as an error, not read past.
+// A part whose scan fails (it sends what a part that threw sends): every
+// part throws after the scans' exchange, and none parses.
+TEST(ObjSharedParse, ScanFailingOnOnePartThrowsOnEvery) {
+  const std::string text = test::grid_file(12, false);
+  for (int parts : {2, 3}) {
+    const int failing = parts - 1;
+    ThreadExchange exchange(parts);
+    std::vector<std::string> errors(static_cast<size_t>(parts));
+    {
+      std::vector<std::jthread> threads;
+      for (int p = 0; p < parts; ++p)
+        threads.emplace_back([&, p] {
+          const WorkShare share = exchange.share(p, failing);
+          ObjParse out;
+          try {
+            parse_obj_chunked(text, no_materials(), 256, &out, &share);
+          } catch (const Error& e) {
+            errors[size_t(p)] = e.what();
+          }
+        });
+    }
+    for (int p = 0; p < parts; ++p) {
+      EXPECT_EQ(exchange.calls(p), 1) << "part " << p << " of " << parts;
+      EXPECT_EQ(errors[size_t(p)], "scanning OBJ text in chunks: part " + std::to_string(failing) + " failed")
+          << "part " << p << " of " << parts;
+    }
+  }
+}
+
+// Bytes that do not parse are a bug, reported as an error on every part,
+// not read past: part 1's bytes cut short, in the scans' exchange (0) or
+// the parses' (1).
 TEST(ObjSharedParse, CorruptBytesAreAnError) {
   const std::string text = test::grid_file(6, false);
-  for (size_t cut : {size_t(1), size_t(9), size_t(100)}) {
-    WorkShare share;
-    share.parts = 2;
-    share.exchange = [&](std::vector<std::byte> mine) {
-      std::vector<std::byte> other = mine;  // part 1 "sends" part 0's bytes cut short
-      other.resize(other.size() > cut ? other.size() - cut : 0);
-      return std::vector<std::vector<std::byte>>{mine, other};
-    };
-    ObjParse out;
-    EXPECT_THROW(parse_obj_chunked(text, no_materials(), 64, &out, &share), Error) << cut;
-  }
+  for (int stage : {0, 1})
+    for (size_t cut : {size_t(1), size_t(9), size_t(100)}) {
+      ThreadExchange exchange(2);
+      std::vector<WorkShare> shares{exchange.share(0), exchange.share(1)};
+      int calls = 0;
+      shares[1].exchange = [&, inner = shares[1].exchange](std::vector<std::byte> mine) {
+        if (calls++ == stage) mine.resize(mine.size() > cut ? mine.size() - cut : 0);
+        return inner(std::move(mine));
+      };
+      std::vector<std::string> errors(2);
+      {
+        std::vector<std::jthread> threads;
+        for (int p = 0; p < 2; ++p)
+          threads.emplace_back([&, p] {
+            ObjParse out;
+            try {
+              parse_obj_chunked(text, no_materials(), 64, &out, &shares[size_t(p)]);
+            } catch (const Error& e) {
+              errors[size_t(p)] = e.what();
+            }
+          });
+      }
+      for (int p = 0; p < 2; ++p) {
+        EXPECT_NE(errors[size_t(p)], "") << "part " << p << ", stage " << stage << ", cut " << cut;
+        EXPECT_EQ(exchange.calls(p), stage + 1) << "part " << p << ", stage " << stage << ", cut " << cut;
+      }
+    }
 }
 
 }  // namespace

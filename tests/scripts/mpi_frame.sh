@@ -5,9 +5,9 @@
 # the colour's alpha), for 2 and 3 ranks, for a course scene (the course's
 # own command line too), an asset, a glass scene with --spp 16 --shadows
 # --bounces 3, and an OBJ large enough for the ranks to share its parse and
-# its BVH build (ObjReadOptions::share, BvhBuildOptions::share_min_triangles:
-# 32768); --stats shows each rank's share of the tiles, which add up to the
-# frame's.
+# the smooth normals and BVH builds of its large meshes (ObjReadOptions::share,
+# share_min_faces, BvhBuildOptions::share_min_triangles: 32768); --stats shows
+# each rank's share of the tiles, which add up to the frame's.
 source "$(dirname "$0")/lib.sh"
 require_mpi
 require_shared
@@ -18,13 +18,15 @@ fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
 
 course=$RAYFORM_SHARED/course
 # An OBJ text of more than 1 MiB, whose parse the ranks share (ObjReadOptions::share):
-# a wavy grid of triangles and quads in groups, 95922 triangles once split: over the
-# threshold at which the ranks share a mesh's BVH build too (build_mesh_accel with a WorkShare).
+# a wavy grid of triangles and quads without normals in three groups, of 43800, 43800 and
+# 8322 triangles once split: the first two over the thresholds at which the ranks share a
+# mesh's smooth normals (ObjReadOptions::share_min_faces) and its BVH build
+# (build_mesh_accel with a WorkShare), the third under them (each rank makes it whole).
 awk -v n=220 'BEGIN {
   for (y = 0; y < n; y++) for (x = 0; x < n; x++)
     printf "v %.5f %.5f %.5f\n", x / n - 0.5, y / n - 0.5, 0.05 * sin(x * 0.3) * cos(y * 0.2)
   for (y = 0; y + 1 < n; y++) {
-    if (y % 50 == 0) print "g band" y
+    if (y % 100 == 0) print "g band" y
     for (x = 0; x + 1 < n; x++) {
       a = y * n + x + 1
       if ((x + y) % 3 == 0) printf "f %d %d %d %d\n", a, a + 1, a + n + 1, a + n

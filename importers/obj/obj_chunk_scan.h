@@ -1,0 +1,60 @@
+// The quick scan of a chunk of OBJ text that the chunked parse makes before
+// parsing it (obj_parallel_parse.h): line kinds only, no numbers. It finds
+// the state lines (mtllib, usemtl, g, o, s) that the chunks after it need in
+// front of their text, counts the `v` lines and the faces of each g/o
+// section, and tells whether the chunk holds anything the stitching of
+// chunks cannot reproduce (then the whole text is parsed in one piece).
+#pragma once
+
+#include <cstddef>
+#include <cstring>
+#include <string_view>
+#include <vector>
+
+namespace rayform::obj {
+
+// A line of the text (without its line end) and where it starts.
+struct Line {
+  std::string_view text;
+  size_t at = 0;
+  bool empty() const { return text.empty(); }
+};
+
+// What the scan of one chunk found.
+struct ChunkScan {
+  bool supported = true;
+  Line first_mtllib, last_usemtl, last_group, last_smoothing;
+  std::vector<size_t> section_faces{0};  // faces before the chunk's first g/o line, then after each
+  size_t vertex_lines = 0;               // `v` lines
+  // Per face of more than three corners, in order: the chunk's `v` lines before it.
+  std::vector<size_t> polygon_vertices_before;
+};
+
+inline bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// Calls visit(line, t) for each line of [begin, end) (its '\r\n' or '\n'
+// end taken off), t being the line without its leading blanks, as LoadObj
+// reads it, until visit returns false.
+template <class Visit>
+inline void for_each_line(std::string_view text, size_t begin, size_t end, Visit visit) {
+  for (size_t p = begin; p < end;) {
+    const char* nl = static_cast<const char*>(std::memchr(text.data() + p, '\n', end - p));
+    const size_t line_end = nl ? size_t(nl - text.data()) : end;
+    size_t e = line_end;
+    if (e > p && text[e - 1] == '\r') --e;
+    const Line line{text.substr(p, e - p), p};
+    p = nl ? line_end + 1 : end;
+    std::string_view t = line.text;
+    size_t lead = 0;
+    while (lead < t.size() && is_space(t[lead])) ++lead;
+    t.remove_prefix(lead);
+    if (!visit(line, t)) return;
+  }
+}
+
+inline bool is_vertex_line(std::string_view t) { return t.size() > 1 && t[0] == 'v' && is_space(t[1]); }
+
+// Sorts each line of [begin, end) of `text` by the tests LoadObj makes, in its order.
+ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end);
+
+}  // namespace rayform::obj
