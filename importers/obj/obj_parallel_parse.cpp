@@ -149,16 +149,6 @@ void append(std::vector<T>& to, const std::vector<T>& from) {
 // last parts if each took a run of the text).
 int chunk_part(size_t k, int parts) { return int(k % size_t(parts)); }
 
-std::string what_was_thrown() {
-  try {
-    throw;
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (...) {
-    return "an unknown exception";
-  }
-}
-
 // Each part scans the chunks that fall to it, and one exchange gives every
 // part every chunk's scan; false on every part when a chunk is not
 // supported. What a part throws travels as its message, and every part
@@ -176,7 +166,7 @@ bool scan_shared(const WorkShare& share, std::string_view text, const std::vecto
                       [&](size_t i) { s[mine[i]] = obj::scan_chunk(text, starts[mine[i]], starts[mine[i] + 1]); });
     bytes = obj::scan_bytes(mine, s);
   } catch (...) {
-    bytes = obj::failed_scan_bytes(what_was_thrown());
+    bytes = obj::failed_scan_bytes(current_exception_message());
   }
   std::vector<std::vector<std::byte>> all = share.exchange(std::move(bytes));
   if (all.size() != size_t(share.parts))
@@ -222,7 +212,7 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
         parse_chunk(mine[i]);
       } catch (...) {
         r[mine[i]] = ChunkResult{};
-        r[mine[i]].error = what_was_thrown();
+        r[mine[i]].error = current_exception_message();
       }
     });
     size_t size = 0;
@@ -231,7 +221,7 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
     for (size_t k : mine) obj::append_chunk_bytes(k, r[k], &bytes);
   } catch (...) {
     ChunkResult failed;
-    failed.error = what_was_thrown();
+    failed.error = current_exception_message();
     bytes.clear();
     for (size_t k : mine) {
       obj::append_chunk_bytes(k, failed, &bytes);

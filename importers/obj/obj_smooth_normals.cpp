@@ -82,16 +82,6 @@ void sum_range(const std::vector<float>& vertices, const ObjFaces& faces, size_t
 // Part p's positions: [begin(p), begin(p + 1)).
 size_t range_begin(size_t positions, int part, int parts) { return positions * size_t(part) / size_t(parts); }
 
-std::string what_was_thrown() {
-  try {
-    throw;
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (...) {
-    return "an unknown exception";
-  }
-}
-
 }  // namespace
 
 std::vector<vec3> smooth_normal_sums(const std::vector<float>& vertices, const ObjFaces& faces,
@@ -115,7 +105,7 @@ std::vector<vec3> smooth_normal_sums(const std::vector<float>& vertices, const O
     mine[0] = std::byte{1};
     if (hi > lo) std::memcpy(mine.data() + 1, sums.data() + lo, (hi - lo) * sizeof(vec3));
   } catch (...) {
-    const std::string what = what_was_thrown();
+    const std::string what = current_exception_message();
     mine.assign(1 + what.size(), std::byte{0});
     std::memcpy(mine.data() + 1, what.data(), what.size());
   }

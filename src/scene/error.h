@@ -11,4 +11,16 @@ struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The message of the exception being handled (call inside a catch block):
+// what() of a std::exception, else "an unknown exception".
+inline std::string current_exception_message() {
+  try {
+    throw;
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "an unknown exception";
+  }
+}
+
 }  // namespace rayform
