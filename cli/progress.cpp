@@ -1,10 +1,13 @@
 #include "progress.h"
 
+#include "ranks.h"
+
 #include "rayform/image/interrupt_cleanup.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <unistd.h>
 
 namespace rayform::cli {
@@ -29,8 +32,21 @@ std::string progress_text(const std::string& label, float fraction, double elaps
   return text;
 }
 
+bool stderr_shows_on_terminal() {
+  if (isatty(STDERR_FILENO)) return true;
+  if (!launched_by_mpi_launcher()) return false;
+  // mpirun forwards its ranks' stderr through pipes to its own: on the node
+  // where it runs, it is the ranks' parent, and its stderr is the user's.
+  const std::string parent_stderr = "/proc/" + std::to_string(getppid()) + "/fd/2";
+  char target[256];
+  const ssize_t n = readlink(parent_stderr.c_str(), target, sizeof target - 1);
+  if (n <= 0) return false;
+  const std::string device(target, size_t(n));
+  return device.starts_with("/dev/pts/") || device.starts_with("/dev/tty");
+}
+
 Progress::Progress(std::string label, bool quiet)
-    : label_(std::move(label)), enabled_(!quiet && isatty(STDERR_FILENO)) {}
+    : label_(std::move(label)), enabled_(!quiet && stderr_shows_on_terminal()) {}
 
 Progress::~Progress() { end_line(); }
 

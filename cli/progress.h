@@ -1,5 +1,5 @@
-// Progress on stderr, only when stderr is a terminal and not silenced: one
-// line, redrawn in place, with the time elapsed and an estimate of the time
+// Progress on stderr, only when stderr is shown on a terminal and not
+// silenced: one line, redrawn in place, with the time elapsed and an estimate of the time
 // left. An interrupted run (SIGINT, SIGTERM, SIGHUP) ends the line before its
 // message (image/interrupt_cleanup.h).
 #pragma once
@@ -8,6 +8,12 @@
 #include <string>
 
 namespace rayform::cli {
+
+// Whether stderr is a terminal, or, under an MPI launcher, a pipe to the
+// launcher's stderr that is one (mpirun, the parent of the ranks on its own
+// node, draws what they write; ranks started by a remote daemon or srun show
+// no progress line).
+bool stderr_shows_on_terminal();
 
 // A duration for people: "0:07", "1:05" (minutes:seconds), "1:02:03" (hours
 // too); negative or non-finite values are "0:00"; fractions are rounded down.

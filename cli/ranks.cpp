@@ -15,15 +15,13 @@ namespace {
 Ranks the_ranks;
 const MpiPlugin* started = nullptr;
 
-// Whether a launcher that gives MPI its ranks started this process: OpenMPI's
-// mpirun, a PMIx launcher (srun --mpi=pmix), a PMI-1/2 one.
-bool launched_by_mpirun() {
+}  // namespace
+
+bool launched_by_mpi_launcher() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
     if (std::getenv(v)) return true;
   return false;
 }
-
-}  // namespace
 
 bool built_with_mpi() {
 #ifdef RAYFORM_WITH_MPI
@@ -36,7 +34,7 @@ bool built_with_mpi() {
 const MpiPlugin* mpi() { return started; }
 
 Ranks start_ranks(int* argc, char*** argv) {
-  if (!built_with_mpi() || !launched_by_mpirun()) return the_ranks;
+  if (!built_with_mpi() || !launched_by_mpi_launcher()) return the_ranks;
   std::string failure;
   const MpiPlugin* plugin = open_mpi_plugin(&failure);
   if (!plugin) abort_ranks("rayform: error: started by mpirun, but MPI cannot be used: " + failure);

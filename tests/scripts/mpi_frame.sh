@@ -138,5 +138,23 @@ grep -q '^rayform: error: started by mpirun, but MPI cannot be used: .*not-a-plu
 [ -e np.png ] && fail plugin "an output was written without MPI"
 [ $failures -eq 0 ] && echo "ok   [plugin] MPI loaded by ranks only; a broken plugin stops the job with a message"
 
+# Progress from rank 0 only: mpirun on a terminal (a pty from util-linux
+# `script`) draws the line rank 0 writes into its stderr pipe, with the share
+# of the frame's tiles handed out; mpirun without a terminal gets none.
+if command -v script >/dev/null; then
+  before=$failures
+  progress_run="timeout 120 mpirun --allow-run-as-root --oversubscribe -np 2 '$RAYFORM_BIN' render grid.obj -o '$PWD/progress.png' --size 320x240 --spp 4 --threads 1"
+  script -qfec "$progress_run" /dev/null </dev/null >progress.log 2>&1 || fail progress "exit $?: $(cat -v progress.log)"
+  [ "$(grep -c 'rendering done in [0-9]*:[0-9][0-9]' progress.log)" -eq 1 ] ||
+    fail progress "expected one 'rendering done in' (rank 0's): $(cat -v progress.log)"
+  grep -qE 'rendering +[0-9]+%  [0-9]+:[0-9]{2} elapsed' progress.log || fail progress "no percentage: $(cat -v progress.log)"
+  [ -f progress.png ] || fail progress "no picture"
+  mpi_run 2 render grid.obj -o "$PWD/quiet.png" --size 64x48 >quiet.log 2>&1 || fail progress "no terminal: exit $?"
+  grep -q 'rendering' quiet.log && fail progress "mpirun without a terminal, yet a progress line: $(cat -v quiet.log)"
+  [ $failures -eq $before ] && echo "ok   [progress] rank 0's progress line through mpirun on a terminal, none without one"
+else
+  echo "SKIPPED [progress]: script (util-linux) not found"
+fi
+
 echo "$failures failure(s)"
 [ $failures -eq 0 ]
