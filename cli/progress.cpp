@@ -1,6 +1,6 @@
 #include "progress.h"
 
-#include "ranks.h"
+#include "mpi_launcher.h"
 
 #include "rayform/image/interrupt_cleanup.h"
 

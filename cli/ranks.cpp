@@ -3,6 +3,7 @@
 // is local.
 #include "ranks.h"
 
+#include "mpi_launcher.h"
 #include "mpi_plugin.h"
 
 #include <cstdint>
@@ -16,12 +17,6 @@ Ranks the_ranks;
 const MpiPlugin* started = nullptr;
 
 }  // namespace
-
-bool launched_by_mpi_launcher() {
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
-    if (std::getenv(v)) return true;
-  return false;
-}
 
 bool built_with_mpi() {
 #ifdef RAYFORM_WITH_MPI

@@ -22,10 +22,6 @@ struct Ranks {
 // Whether this rayform was built with MPI.
 bool built_with_mpi();
 
-// Whether a launcher that gives MPI its ranks started this process: OpenMPI's
-// mpirun, a PMIx launcher (srun --mpi=pmix), a PMI-1/2 one.
-bool launched_by_mpi_launcher();
-
 // Starts MPI when launched by mpirun (once, first thing in main); MPI is
 // finalised at exit. Returns ranks().
 Ranks start_ranks(int* argc, char*** argv);
