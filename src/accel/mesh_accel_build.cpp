@@ -4,7 +4,6 @@
 #include "rayform/accel/mesh_accel.h"
 
 #include "rayform/accel/mesh_accel_builder.h"
-#include "rayform/scene/huge_pages.h"
 
 #include <stdexcept>
 
@@ -21,10 +20,9 @@ MeshAccel build_whole(std::span<const vec3> positions, std::span<const uint32_t>
   MeshBuilder builder(refs, options);
   const BuildNode* tree = builder.build(root);
   check_packets(tree);
-  // The arrays every ray walks: in huge pages (scene/huge_pages.h), as Embree allocates its BVHs.
-  resize_in_huge_pages(m.bvh.nodes, tree->nodes);
-  resize_in_huge_pages(m.packets, tree->packets);
-  resize_in_huge_pages(m.triangles, tree->triangles);
+  m.bvh.nodes.resize(tree->nodes);
+  m.packets.resize(tree->packets);
+  m.triangles.resize(tree->triangles);
   Flattener{refs, positions, indices, arrays(m)}.write(tree, 0, 0, 0);
   set_root_bounds(m, root);
   return m;

@@ -3,7 +3,6 @@
 // the top of the tree, builds the subtrees assigned to it, and after one
 // exchange assembles the whole structure, byte for byte the whole build's.
 #include "rayform/accel/mesh_accel_builder.h"
-#include "rayform/scene/huge_pages.h"
 
 #include <cstdint>
 #include <cstring>
@@ -127,10 +126,9 @@ MeshAccel build_shared(std::span<const vec3> positions, std::span<const uint32_t
   for (auto it = top.rbegin(); it != top.rend(); ++it) builder->refinish(*it);  // children before parents
   const BuildNode* tree = top.front();
   check_packets(tree);
-  // The arrays every ray walks: in huge pages (scene/huge_pages.h), as Embree allocates its BVHs.
-  resize_in_huge_pages(m.bvh.nodes, tree->nodes);
-  resize_in_huge_pages(m.packets, tree->packets);
-  resize_in_huge_pages(m.triangles, tree->triangles);
+  m.bvh.nodes.resize(tree->nodes);
+  m.packets.resize(tree->packets);
+  m.triangles.resize(tree->triangles);
   Flattener{refs, positions, indices, arrays(m), received}.write(tree, 0, 0, 0);
   set_root_bounds(m, root);
   return m;
