@@ -10,6 +10,7 @@
 #pragma once
 
 #include "rayform/accel/bvh.h"
+#include "rayform/accel/huge_page_allocator.h"
 #include "rayform/geometry/triangle_intersect.h"
 #include "rayform/scene/work_share.h"
 
@@ -53,8 +54,10 @@ struct alignas(16) TrianglePacket {
 };
 static_assert(sizeof(TrianglePacket) == 160);
 
+// Nodes and packets are read at random by incoherent rays: on huge pages when
+// large (huge_page_allocator.h).
 struct WideBvh {
-  std::vector<WideBvhNode> nodes;  // nodes[0] is the root (absent for an empty mesh)
+  std::vector<WideBvhNode, HugePageAllocator<WideBvhNode>> nodes;  // nodes[0] is the root (absent for an empty mesh)
   Bounds3 root_bounds;
   Bounds3 bounds() const { return root_bounds; }
   size_t memory_bytes() const { return nodes.capacity() * sizeof(WideBvhNode); }
@@ -62,9 +65,9 @@ struct WideBvh {
 
 struct MeshAccel {
   WideBvh bvh;
-  std::vector<TrianglePacket> packets;  // leaf order
-  std::vector<uint32_t> triangles;      // original triangle index, leaf order (one per triangle; not
-                                        // needed by traversal, which reads TrianglePacket::id)
+  std::vector<TrianglePacket, HugePageAllocator<TrianglePacket>> packets;  // leaf order
+  std::vector<uint32_t> triangles;  // original triangle index, leaf order (one per triangle; not
+                                    // needed by traversal, which reads TrianglePacket::id)
 
   size_t memory_bytes() const {
     return bvh.memory_bytes() + packets.capacity() * sizeof(TrianglePacket) + triangles.capacity() * sizeof(uint32_t);

@@ -411,8 +411,8 @@ TEST(Bvh, TreeIsWellFormed) {
 
 // Byte images of the structure (nodes and packets have no padding bytes that
 // the builder leaves unwritten: the static_asserts fix their layout).
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class A>
+bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 

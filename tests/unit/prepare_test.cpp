@@ -85,8 +85,8 @@ TEST(Prepare, OnlyUsedMeshesAreBuilt) {
   EXPECT_TRUE(p.meshes[2].bvh.nodes.empty());
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class A>
+bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
