@@ -25,14 +25,6 @@ bool launched_by_mpirun() {
 
 }  // namespace
 
-bool built_with_mpi() {
-#ifdef RAYFORM_WITH_MPI
-  return true;
-#else
-  return false;
-#endif
-}
-
 const MpiPlugin* mpi() { return started; }
 
 Ranks start_ranks(int* argc, char*** argv) {
