@@ -18,14 +18,6 @@ const MpiPlugin* started = nullptr;
 
 }  // namespace
 
-bool built_with_mpi() {
-#ifdef RAYFORM_WITH_MPI
-  return true;
-#else
-  return false;
-#endif
-}
-
 const MpiPlugin* mpi() { return started; }
 
 Ranks start_ranks(int* argc, char*** argv) {

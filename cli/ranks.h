@@ -19,7 +19,8 @@ struct Ranks {
   bool distributed() const { return size > 1; }
 };
 
-// Whether this rayform was built with MPI.
+// Whether this rayform was built with MPI (built_with_mpi.cpp: compiled into
+// each program, false in the fuzz entries).
 bool built_with_mpi();
 
 // Starts MPI when launched by mpirun (once, first thing in main); MPI is
