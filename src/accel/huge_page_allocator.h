@@ -44,8 +44,9 @@ struct HugePageAllocator {
 
   void deallocate(T* p, size_t n) noexcept {
     const size_t bytes = n * sizeof(T);
-    if (bytes < huge_page_bytes) ::operator delete(p, bytes, std::align_val_t(alignof(T)));
-    else ::operator delete(p, round_up(bytes), std::align_val_t(huge_page_bytes));
+    // The unsized forms: clang (the fuzz build) declares the sized ones only with -fsized-deallocation.
+    if (bytes < huge_page_bytes) ::operator delete(p, std::align_val_t(alignof(T)));
+    else ::operator delete(p, std::align_val_t(huge_page_bytes));
   }
 
   static constexpr size_t max_size() noexcept { return (size_t(-1) - huge_page_bytes) / sizeof(T); }
