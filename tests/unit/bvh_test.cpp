@@ -4,6 +4,7 @@
 // with brute force on segments; and the tree is well formed.
 #include "rayform/accel/mesh_accel.h"
 #include "rayform/scene/procedural_mesh.h"
+#include "test_bytes.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,8 @@
 
 namespace rayform {
 namespace {
+
+using test::same_bytes;
 
 struct SoupMesh {
   std::vector<vec3> positions;
@@ -407,13 +410,6 @@ TEST(Bvh, TreeIsWellFormed) {
     EXPECT_EQ(bvh.primitives.size(), prims.size() - 3);
   }
   EXPECT_TRUE(build_bvh(std::vector<Bounds3>{}).nodes.empty());
-}
-
-// Byte images of the structure (nodes and packets have no padding bytes that
-// the builder leaves unwritten: the static_asserts fix their layout).
-template <class T, class A>
-bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
 TEST(Bvh, BuildIsDeterministic) {

@@ -6,6 +6,7 @@
 // coincident, tiny, empty, and ones under the threshold (no exchange).
 #include "rayform/accel/mesh_accel.h"
 #include "rayform/scene/procedural_mesh.h"
+#include "test_bytes.h"
 #include "test_work_share.h"
 
 #include <gtest/gtest.h>
@@ -21,12 +22,9 @@
 namespace rayform {
 namespace {
 
-using test::ThreadExchange;
+using test::same_bytes;
 
-template <class T, class A>
-bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
-}
+using test::ThreadExchange;
 
 void expect_same(const MeshAccel& want, const MeshAccel& got, const std::string& what) {
   EXPECT_EQ(want.bvh.nodes.size(), got.bvh.nodes.size()) << what;

@@ -8,6 +8,7 @@
 #include "rayform/scene/error.h"
 #include "rayform/scene/procedural_mesh.h"
 #include "test_paths.h"
+#include "test_bytes.h"
 #include "test_scenes.h"
 #include "test_work_share.h"
 
@@ -20,6 +21,8 @@
 
 namespace rayform {
 namespace {
+
+using test::same_bytes;
 namespace fs = std::filesystem;
 
 void write_file(const fs::path& p, const std::string& text) {
@@ -83,11 +86,6 @@ TEST(Prepare, OnlyUsedMeshesAreBuilt) {
   EXPECT_TRUE(p.meshes[0].bvh.nodes.empty());
   EXPECT_EQ(p.meshes[1].triangles.size(), 12u);
   EXPECT_TRUE(p.meshes[2].bvh.nodes.empty());
-}
-
-template <class T, class A>
-bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
 TEST(Prepare, SharedPreparesBuildTheLargeUsedMeshesSharedInMeshOrder) {

@@ -10,6 +10,7 @@
 #include "rayform/scene/scene_defaults.h"
 #include "rayform/importers/scene_io.h"
 #include "test_paths.h"
+#include "test_bytes.h"
 
 #include <gtest/gtest.h>
 
@@ -20,10 +21,7 @@
 namespace rayform {
 namespace {
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+using test::same_bytes;
 
 void expect_identical(const RenderResult& a, const RenderResult& b, const std::string& what) {
   EXPECT_TRUE(same_bytes(a.color.pixels, b.color.pixels)) << what << ": colour";
