@@ -11,9 +11,9 @@ namespace rayform {
 // existing regular file is swapped with renameat2(RENAME_EXCHANGE) and the
 // old content, now at `from`, removed: a plain rename over an existing file
 // makes ext4 (its auto_da_alloc heuristic) write the new file's data to disk
-// before returning, 2 to 3 ms for a small image here, more than rendering a
-// course scene. The cost of skipping it: after a power cut (not a failed run)
-// the new file may be empty, as with any write not followed by fsync. Without
+// before returning, 2 to 3 ms for a small image here, for a file not synced
+// yet (the program's outputs are synced before they are moved: checked_write.h;
+// a library's caller may not sync). Without
 // a target, on file systems that refuse the exchange, and for targets that are
 // not regular files: a plain rename. Sets `ec` on failure.
 void replace_file(const std::string& from, const std::string& to, std::error_code& ec);

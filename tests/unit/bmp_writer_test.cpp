@@ -65,6 +65,23 @@ TEST(BmpWriter, FileReadsBackAsThePixels) {
   stbi_image_free(data);
 }
 
+// The file is written a block of rows at a time (about 256 KiB): an image of
+// several blocks, whose last one is short, gives encode_bmp24's bytes.
+TEST(BmpWriter, FileOfManyBlocksIsTheEncodedBytes) {
+  const fs::path dir = test::temp_dir("bmp_writer_blocks");
+  for (int channels : {1, 3}) {
+    const Image8 img = patterned(1001, 419, channels);  // rows of 3004 bytes: 87 a block, 5 blocks
+    const std::string path = (dir / ("b" + std::to_string(channels) + ".bmp")).string();
+    std::string error;
+    ASSERT_TRUE(write_bmp24(path, img, &error)) << error;
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<unsigned char> written{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::vector<unsigned char> encoded = encode_bmp24(img);
+    ASSERT_EQ(written.size(), 54u + 3004u * 419u);
+    EXPECT_TRUE(written == encoded) << channels << " channel(s)";
+  }
+}
+
 TEST(BmpWriter, UnwritablePathFails) {
   const fs::path dir = test::temp_dir("bmp_writer_fail");
   std::string error;
