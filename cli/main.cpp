@@ -2,6 +2,7 @@
 // the course's own flags verbatim, and subcommands built with CLI11.
 #include "commands.h"
 #include "course_args.h"
+#include "heap_reuse.h"
 #include "ranks.h"
 #include "read_flags.h"
 #include "render_job.h"
@@ -96,6 +97,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using rayform::cli::ranks;
+  rayform::cli::keep_freed_heap_for_reuse();
   try {
     rayform::cli::start_ranks(&argc, &argv);
     return rayform::cli::run(argc, argv);

@@ -5,11 +5,13 @@
 // Incoherent rays on a large mesh touch a few lines of many pages each, more
 // pages than 4 KiB TLB entries cover; Embree advises its BVH memory likewise.
 // Measured: closest hit on random rays on the 1M torus +10-20%
-// (docs/performance.md). Smaller arrays, and systems without the advice, get
-// ordinary aligned memory; the contents are the same either way.
+// (docs/performance.md). On Linux such an array is a mapping of its own
+// (mmap), returned with munmap. Smaller arrays, and systems without the
+// advice, get ordinary aligned memory; the contents are the same either way.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <new>
 
 #if defined(__linux__)
@@ -33,20 +35,34 @@ struct HugePageAllocator {
     const size_t bytes = n * sizeof(T);
     if (bytes < huge_page_bytes) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
     const size_t whole = round_up(bytes);
-    void* p = ::operator new(whole, std::align_val_t(huge_page_bytes));
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // Before the pages are first touched, which is when the kernel picks their
-    // size. Only advice: where it is refused, the pages are small.
-    (void)madvise(p, whole, MADV_HUGEPAGE);
+    // A mapping of its own, not the heap's: fresh pages whose size the kernel
+    // picks at their first touch, after the advice (memory malloc kept for
+    // reuse may already sit on small pages). One huge page longer, then
+    // trimmed to start on a huge page.
+    void* m = ::mmap(nullptr, whole + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (m == MAP_FAILED) throw std::bad_alloc();
+    const uintptr_t at = (reinterpret_cast<uintptr_t>(m) + huge_page_bytes - 1) & ~(huge_page_bytes - 1);
+    const size_t head = at - reinterpret_cast<uintptr_t>(m);
+    if (head > 0) ::munmap(m, head);
+    if (head < huge_page_bytes) ::munmap(reinterpret_cast<void*>(at + whole), huge_page_bytes - head);
+    // Only advice: where it is refused, the pages are small.
+    (void)::madvise(reinterpret_cast<void*>(at), whole, MADV_HUGEPAGE);
+    return reinterpret_cast<T*>(at);
+#else
+    return static_cast<T*>(::operator new(whole, std::align_val_t(huge_page_bytes)));
 #endif
-    return static_cast<T*>(p);
   }
 
   void deallocate(T* p, size_t n) noexcept {
     const size_t bytes = n * sizeof(T);
     // The unsized forms: clang (the fuzz build) declares the sized ones only with -fsized-deallocation.
     if (bytes < huge_page_bytes) ::operator delete(p, std::align_val_t(alignof(T)));
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    else ::munmap(p, round_up(bytes));
+#else
     else ::operator delete(p, std::align_val_t(huge_page_bytes));
+#endif
   }
 
   static constexpr size_t max_size() noexcept { return (size_t(-1) - huge_page_bytes) / sizeof(T); }
