@@ -69,6 +69,9 @@ struct MeshAccel {
   std::vector<uint32_t> triangles;  // original triangle index, leaf order (one per triangle; not
                                     // needed by traversal, which reads TrianglePacket::id)
 
+  // The arrays' capacities in bytes, as Embree's memory monitor counts its
+  // blocks: a huge-page array's mapping ends on a whole 2 MiB page, up to
+  // 2 MiB more per array than counted here.
   size_t memory_bytes() const {
     return bvh.memory_bytes() + packets.capacity() * sizeof(TrianglePacket) + triangles.capacity() * sizeof(uint32_t);
   }

@@ -7,6 +7,7 @@
 #include "rayform/scene/error.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"
+#include "test_bytes.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -157,14 +158,8 @@ FuzzOutcome fuzz_course_txt(const uint8_t* data, size_t size, const FuzzLimits& 
   return load_and_prepare("scene.txt");
 }
 
-// OBJ: model.obj %% model.mtl %% texture (tex.bmp, tex.tga, ... all name it).
 // The OBJ parse in chunks (obj_parallel_parse.h) must give what the parse in
 // one piece gives, or the same error. Returns "" when they agree.
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 std::string chunked_obj_differs(const std::string& path, size_t chunk_bytes) {
   auto read = [&](size_t chunk, std::vector<std::string>* warnings, std::string* error) {
     ObjReadOptions o;
@@ -186,6 +181,7 @@ std::string chunked_obj_differs(const std::string& path, size_t chunk_bytes) {
   if (one.meshes.size() != chunked.meshes.size()) return "mesh counts differ";
   for (size_t i = 0; i < one.meshes.size(); ++i) {
     const Mesh &a = one.meshes[i], &b = chunked.meshes[i];
+    using test::same_bytes;
     if (a.name != b.name || !same_bytes(a.positions, b.positions) || !same_bytes(a.normals, b.normals) ||
         !same_bytes(a.uvs, b.uvs) || !same_bytes(a.colors, b.colors) || !same_bytes(a.indices, b.indices) ||
         a.face_materials != b.face_materials)
@@ -201,6 +197,7 @@ std::string chunked_obj_differs(const std::string& path, size_t chunk_bytes) {
   return "";
 }
 
+// OBJ: model.obj %% model.mtl %% texture (tex.bmp, tex.tga, ... all name it).
 FuzzOutcome fuzz_obj(const uint8_t* data, size_t size, const FuzzLimits& limits) {
   if (size > limits.max_input_bytes) return skipped();
   put_parts(split_parts(bytes_of(data, size), 3), {"model.obj", "model.mtl", "tex.bin"});
