@@ -65,7 +65,9 @@ struct HugePageAllocator {
 #endif
   }
 
-  static constexpr size_t max_size() noexcept { return (size_t(-1) - huge_page_bytes) / sizeof(T); }
+  // As std::allocator (PTRDIFF_MAX bytes): rounding up to whole pages, plus
+  // the page of slack for the alignment, cannot overflow.
+  static constexpr size_t max_size() noexcept { return size_t(-1) / 2 / sizeof(T); }
 
   template <class U>
   bool operator==(const HugePageAllocator<U>&) const noexcept {

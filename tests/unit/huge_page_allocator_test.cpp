@@ -60,6 +60,15 @@ TEST(HugePageAllocator, SmallArraysKeepTheirTypesAlignment) {
   EXPECT_EQ(reinterpret_cast<uintptr_t>(packets.data()) % huge_page_bytes, 0u);
 }
 
+// Sizes near the limit throw: rounding up to whole huge pages must not wrap
+// around to a small mapping.
+TEST(HugePageAllocator, AbsurdSizesThrowInsteadOfWrapping) {
+  using A = HugePageAllocator<TrianglePacket>;
+  A a;
+  EXPECT_THROW((void)a.allocate(A::max_size() + 1), std::bad_array_new_length);
+  EXPECT_THROW((void)a.allocate(A::max_size()), std::bad_alloc);  // 2^63 bytes: no system maps that
+}
+
 TEST(HugePageAllocator, MeshAccelOfALargeMeshUsesIt) {
   const Mesh torus = make_bumpy_torus(100000, 1);
   const MeshAccel m = build_mesh_accel(torus.positions, torus.indices);
