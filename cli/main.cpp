@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   using rayform::cli::ranks;
   rayform::cli::keep_freed_heap_for_reuse();
   try {
-    rayform::cli::start_ranks(&argc, &argv);
+    rayform::cli::start_ranks();
     return rayform::cli::run(argc, argv);
   } catch (const rayform::cli::UsageError& e) {
     // Every rank parses the same command line: one message is enough.

@@ -18,6 +18,7 @@ const MpiPlugin* open_mpi_plugin(std::string* failure) {
   }
   MpiPlugin p;
   p.start = reinterpret_cast<rayform_mpi_start_fn>(dlsym(h, "rayform_mpi_start"));
+  p.finish = reinterpret_cast<rayform_mpi_finish_fn>(dlsym(h, "rayform_mpi_finish"));
   p.abort = reinterpret_cast<rayform_mpi_abort_fn>(dlsym(h, "rayform_mpi_abort"));
   p.allgather = reinterpret_cast<rayform_mpi_allgather_fn>(dlsym(h, "rayform_mpi_allgather"));
   p.sum = reinterpret_cast<rayform_mpi_sum_fn>(dlsym(h, "rayform_mpi_sum"));
@@ -27,8 +28,8 @@ const MpiPlugin* open_mpi_plugin(std::string* failure) {
   p.counter_create = reinterpret_cast<rayform_mpi_counter_create_fn>(dlsym(h, "rayform_mpi_counter_create"));
   p.counter_next = reinterpret_cast<rayform_mpi_counter_next_fn>(dlsym(h, "rayform_mpi_counter_next"));
   p.counter_destroy = reinterpret_cast<rayform_mpi_counter_destroy_fn>(dlsym(h, "rayform_mpi_counter_destroy"));
-  if (!p.start || !p.abort || !p.allgather || !p.sum || !p.broadcast || !p.send || !p.receive || !p.counter_create ||
-      !p.counter_next || !p.counter_destroy) {
+  if (!p.start || !p.finish || !p.abort || !p.allgather || !p.sum || !p.broadcast || !p.send || !p.receive ||
+      !p.counter_create || !p.counter_next || !p.counter_destroy) {
     *failure = "librayform_mpi.so lacks some of the rayform_mpi_* functions";
     return nullptr;
   }

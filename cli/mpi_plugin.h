@@ -11,6 +11,7 @@ namespace rayform::cli {
 
 struct MpiPlugin {
   rayform_mpi_start_fn start = nullptr;
+  rayform_mpi_finish_fn finish = nullptr;
   rayform_mpi_abort_fn abort = nullptr;
   rayform_mpi_allgather_fn allgather = nullptr;
   rayform_mpi_sum_fn sum = nullptr;
@@ -26,8 +27,8 @@ struct MpiPlugin {
 // where) and checks its version: nullptr with the reason in *failure.
 const MpiPlugin* open_mpi_plugin(std::string* failure);
 
-// The plugin once start_ranks has started MPI through it; nullptr in a
-// process no MPI launcher started.
+// The plugin, once MPI is up (start_ranks starts it on a thread of its own:
+// the first call waits for it); nullptr in a process no MPI launcher started.
 const MpiPlugin* mpi();
 
 }  // namespace rayform::cli

@@ -3,18 +3,25 @@
 // the plugin needs nothing of rayform. Every function but start, abort and
 // counter_next is collective or point-to-point as its comment says; waits
 // for other ranks do not spin a core (mpi_wait.h). Byte counts are 64-bit:
-// the plugin splits transfers into pieces MPI's int counts can hold.
+// the plugin splits transfers into pieces MPI's int counts can hold. MPI's
+// thread level is MPI_THREAD_SERIALIZED: any thread may call, one at a time.
 #pragma once
 
 #include <cstdint>
 
 extern "C" {
 // Version of this interface; rayform_mpi_version() must return it.
-#define RAYFORM_MPI_PLUGIN_VERSION 1
+#define RAYFORM_MPI_PLUGIN_VERSION 2
 typedef int (*rayform_mpi_version_fn)(void);
-// MPI_Init_thread(MPI_THREAD_SERIALIZED) and MPI_Finalize at exit: 1 with
-// *rank and *size set, or 0 with the reason in `error`.
-typedef int (*rayform_mpi_start_fn)(int* argc, char*** argv, int* rank, int* size, char* error, int error_size);
+// Collective: MPI_Init_thread(MPI_THREAD_SERIALIZED), and the window of the
+// first counter (below), made now so that its cost falls where the caller
+// waits for MPI anyway. 1 with *rank and *size set, or 0 with the reason in
+// `error`. The thread that calls it is MPI's main thread: it must be the one
+// that calls finish.
+typedef int (*rayform_mpi_start_fn)(int* rank, int* size, char* error, int error_size);
+// Collective, on the thread that called start, once no other MPI call is
+// under way: waits for every rank without spinning, then MPI_Finalize.
+typedef void (*rayform_mpi_finish_fn)(void);
 // MPI_Abort of every rank with status 1.
 typedef void (*rayform_mpi_abort_fn)(void);
 // Collective: every rank's `bytes_each` bytes at `mine`, by rank, into `all`.

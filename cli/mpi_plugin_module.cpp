@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <utility>
 
 #include <dirent.h>
 #include <netinet/in.h>
@@ -20,14 +21,6 @@
 namespace {
 
 constexpr uint64_t piece_bytes = uint64_t(1) << 30;  // MPI counts are int
-
-void finalize() {
-  int finalized = 0;
-  MPI_Finalized(&finalized);
-  if (finalized) return;
-  rayform::cli::barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
-  MPI_Finalize();
-}
 
 // MPI's launcher link: the PMIx client of OpenMPI 4 talks to mpirun over a
 // loopback TCP socket without TCP_NODELAY. Its fences (MPI_Init's, and the one
@@ -62,18 +55,51 @@ struct Counter {
   std::mutex mutex;            // one MPI call at a time (MPI_THREAD_SERIALIZED)
 };
 
+// Collective: a counter at 0. One long long in a window on rank 0, which
+// every rank holds a shared lock on (passive target) and advances with
+// MPI_Fetch_and_op. On one node OpenMPI's shared-memory window (osc/sm) makes
+// that an atomic add in shared memory.
+Counter* make_counter() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  auto* c = new Counter;
+  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(long long)) : 0, sizeof(long long), MPI_INFO_NULL, MPI_COMM_WORLD,
+                   &c->value, &c->window);
+  if (rank == 0) {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, c->window);
+    *c->value = 0;
+    MPI_Win_unlock(0, c->window);
+  }
+  rayform::cli::barrier_without_spinning();  // the counter is 0 before anyone takes a number
+  MPI_Win_lock_all(MPI_MODE_NOCHECK, c->window);
+  return c;
+}
+
+// Collective.
+void free_counter(Counter* c) {
+  rayform::cli::barrier_without_spinning();  // others may be busy with their last tile or render
+  MPI_Win_unlock_all(c->window);
+  MPI_Win_free(&c->window);  // collective: every rank has taken its last number
+  delete c;
+}
+
+// The first counter, made by start: a spread frame's tiles and a batch's
+// files each take one, and the first MPI_Win_allocate took 0.4 to 25 ms here (OpenMPI
+// sets up its one-sided layer on the first window). Every rank takes it for
+// the same counter, the first one made after start, so creation stays
+// collective in effect; finish frees it if no one took it.
+Counter* spare_counter = nullptr;
+
 }  // namespace
 
 extern "C" {
 
 __attribute__((visibility("default"))) int rayform_mpi_version(void) { return RAYFORM_MPI_PLUGIN_VERSION; }
 
-__attribute__((visibility("default"))) int rayform_mpi_start(int* argc, char*** argv, int* rank, int* size, char* error,
-                                                             int error_size) {
+__attribute__((visibility("default"))) int rayform_mpi_start(int* rank, int* size, char* error, int error_size) {
   // Tiles are handed out from the worker threads, one MPI call at a time.
   int provided = 0;
-  MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
-  std::atexit(finalize);
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
   send_small_writes_at_once();
   if (provided < MPI_THREAD_SERIALIZED) {
     std::snprintf(error, size_t(error_size),
@@ -83,7 +109,17 @@ __attribute__((visibility("default"))) int rayform_mpi_start(int* argc, char*** 
   }
   MPI_Comm_rank(MPI_COMM_WORLD, rank);
   MPI_Comm_size(MPI_COMM_WORLD, size);
+  if (*size > 1) spare_counter = make_counter();
   return 1;
+}
+
+__attribute__((visibility("default"))) void rayform_mpi_finish(void) {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (finalized) return;
+  if (spare_counter) free_counter(std::exchange(spare_counter, nullptr));
+  rayform::cli::barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
+  MPI_Finalize();
 }
 
 __attribute__((visibility("default"))) void rayform_mpi_abort(void) { MPI_Abort(MPI_COMM_WORLD, 1); }
@@ -129,24 +165,9 @@ __attribute__((visibility("default"))) void rayform_mpi_receive(void* data, uint
   }
 }
 
-// One long long in a window on rank 0, which every rank holds a shared lock
-// on (passive target) and advances with MPI_Fetch_and_op. On one node
-// OpenMPI's shared-memory window (osc/sm) makes that an atomic add in shared
-// memory.
 __attribute__((visibility("default"))) void* rayform_mpi_counter_create(void) {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  auto* c = new Counter;
-  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(long long)) : 0, sizeof(long long), MPI_INFO_NULL, MPI_COMM_WORLD,
-                   &c->value, &c->window);
-  if (rank == 0) {
-    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, c->window);
-    *c->value = 0;
-    MPI_Win_unlock(0, c->window);
-  }
-  rayform::cli::barrier_without_spinning();  // the counter is 0 before anyone takes a number
-  MPI_Win_lock_all(MPI_MODE_NOCHECK, c->window);
-  return c;
+  if (spare_counter) return std::exchange(spare_counter, nullptr);
+  return make_counter();
 }
 
 __attribute__((visibility("default"))) long long rayform_mpi_counter_next(void* counter) {
@@ -160,11 +181,7 @@ __attribute__((visibility("default"))) long long rayform_mpi_counter_next(void* 
 }
 
 __attribute__((visibility("default"))) void rayform_mpi_counter_destroy(void* counter) {
-  auto* c = static_cast<Counter*>(counter);
-  rayform::cli::barrier_without_spinning();  // others may be busy with their last tile or render
-  MPI_Win_unlock_all(c->window);
-  MPI_Win_free(&c->window);  // collective: every rank has taken its last number
-  delete c;
+  free_counter(static_cast<Counter*>(counter));
 }
 
 }  // extern "C"

@@ -23,9 +23,10 @@ struct Ranks {
 // each program, false in the fuzz entries).
 bool built_with_mpi();
 
-// Starts MPI when launched by mpirun (once, first thing in main); MPI is
-// finalised at exit. Returns ranks().
-Ranks start_ranks(int* argc, char*** argv);
+// Starts MPI when launched by mpirun (once, first thing in main), on a thread
+// of its own: the ranks come from the launcher's environment at once, and the
+// first operation below waits for MPI. MPI is finalised at exit. Returns ranks().
+Ranks start_ranks();
 const Ranks& ranks();
 
 // Collective (every rank calls them, in the same order):

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
 #include <cstring>
 #include <chrono>
 #include <cmath>
@@ -35,6 +36,8 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <utility>
+#include <vector>
 #include <filesystem>
 #include <iostream>
 
@@ -142,29 +145,47 @@ void agree_scene_ready(const std::exception_ptr& failure) {
 // OBJ's parse is exchanged among them, and a rank that could not open the
 // file (a path missing on its node) or read another copy would leave the
 // others waiting in that exchange. Each rank gives the file's size (or
-// -errno when it cannot open it); unless all agree, every rank stops before
-// reading, rank 0 naming the first rank that differs. Ranks that all fail
-// alike go on to the load, which fails on each before any exchange and says why.
-void agree_on_input(const std::string& input) {
-  long long seen = 0;
-  if (const int fd = ::open(input.c_str(), O_RDONLY | O_CLOEXEC); fd < 0) {
-    seen = -errno;
-  } else {
-    struct stat st {};
-    seen = ::fstat(fd, &st) == 0 ? (long long)st.st_size : -errno;
-    ::close(fd);
+// -errno when it cannot open it); unless all agree, every rank fails its
+// load, rank 0 naming the first rank that differs. Ranks that all fail alike
+// go on to the load, which fails on each before any exchange and says why.
+//
+// The agreement comes as late as it can: before the load's first exchange,
+// or after the load when it makes none (agree() is called at both places and
+// acts once), so that what comes before (mapping the file, scanning a large
+// OBJ's chunks) overlaps MPI's start (ranks.h). A rank whose load fails
+// before its first exchange agrees after it, as every rank then does.
+class InputAgreement {
+ public:
+  explicit InputAgreement(std::string input) : input_(std::move(input)) {
+    if (const int fd = ::open(input_.c_str(), O_RDONLY | O_CLOEXEC); fd < 0) {
+      seen_ = -errno;
+    } else {
+      struct stat st {};
+      seen_ = ::fstat(fd, &st) == 0 ? (long long)st.st_size : -errno;
+      ::close(fd);
+    }
   }
-  const std::vector<long long> all = gather_numbers(seen);
-  const auto other = std::find_if(all.begin(), all.end(), [&](long long s) { return s != all[0]; });
-  if (other == all.end()) return;
-  auto what = [](long long s) {
-    return s < 0 ? std::string("cannot open it (") + std::strerror(int(-s)) + ")"
-                 : "reads " + std::to_string(s) + " bytes";
-  };
-  if (!ranks().root()) throw ReportedElsewhere("rank 0 reports the error");
-  throw Error(input + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(*other) +
-              ", rank 0 " + what(all[0]) + ": every rank must read the same file; nothing written");
-}
+
+  // Collective, the first time.
+  void agree() {
+    if (std::exchange(agreed_, true)) return;
+    const std::vector<long long> all = gather_numbers(seen_);
+    const auto other = std::find_if(all.begin(), all.end(), [&](long long s) { return s != all[0]; });
+    if (other == all.end()) return;
+    auto what = [](long long s) {
+      return s < 0 ? std::string("cannot open it (") + std::strerror(int(-s)) + ")"
+                   : "reads " + std::to_string(s) + " bytes";
+    };
+    if (!ranks().root()) throw ReportedElsewhere("rank 0 reports the error");
+    throw Error(input_ + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(*other) +
+                ", rank 0 " + what(all[0]) + ": every rank must read the same file; nothing written");
+  }
+
+ private:
+  std::string input_;
+  long long seen_ = 0;
+  bool agreed_ = false;
+};
 
 }  // namespace
 
@@ -238,10 +259,18 @@ void run_render_job(const RenderJob& job) {
   // of the frame.
   const Ranks& rank = ranks();
   const bool spread = job.spread_frame && rank.distributed();
-  const WorkShare share_ranks = spread ? rank_work_share() : WorkShare{};
+  std::optional<InputAgreement> input;
+  WorkShare share_ranks;
+  if (spread) {
+    input.emplace(job.input);
+    share_ranks = rank_work_share();
+    share_ranks.exchange = [exchange = share_ranks.exchange, &input](std::vector<std::byte> mine) {
+      input->agree();
+      return exchange(std::move(mine));
+    };
+  }
   // Warnings, notes and progress from rank 0 only: the others would repeat them.
   const bool quiet = job.quiet || (spread && !rank.root());
-  if (spread) agree_on_input(job.input);
   auto t_load = clock::now();
   ReadyScene loaded;
   PreparedScene prepared;
@@ -265,10 +294,16 @@ void run_render_job(const RenderJob& job) {
       if (shown_through_srgb(ColorOutput{loaded.color.scene, job.color}))
         for (int k = 0; k < 3; ++k) b[k] = background_from_display(b[k]);
     }
+    if (input) input->agree();
     load_s = seconds_since(t_load);
   } catch (...) {
     if (!spread) throw;
     failure = std::current_exception();
+    try {
+      input->agree();  // a different file is the cause, when it is one
+    } catch (...) {
+      failure = std::current_exception();
+    }
   }
   // The shared builds in prepare are collective: the ranks go on to them only
   // when every one of them has loaded the scene.

@@ -133,10 +133,33 @@ LD_DEBUG=files mpi_run 2 --version >ranks.libs 2>&1 || fail plugin "mpirun -np 2
 echo "not a shared library" >not-a-plugin.so
 RAYFORM_MPI_PLUGIN=$PWD/not-a-plugin.so mpi_run 2 render "$course/2012/scene01_plane.txt" -o np.png >np.log 2>&1; rc=$?
 [ $rc -ne 0 ] || fail plugin "a job whose MPI plugin cannot be opened exited 0"
-grep -q '^rayform: error: started by mpirun, but MPI cannot be used: .*not-a-plugin.so' np.log ||
+grep -q '^rayform: error: started by an MPI launcher, but MPI cannot be used: .*not-a-plugin.so' np.log ||
   fail plugin "no message naming the plugin: $(cat np.log)"
 [ -e np.png ] && fail plugin "an output was written without MPI"
 [ $failures -eq 0 ] && echo "ok   [plugin] MPI loaded by ranks only; a broken plugin stops the job with a message"
+
+# MPI starts on a thread of its own (cli/ranks.h), the ranks taken at once
+# from mpirun's environment. Without them there (as under a PMIx launcher,
+# which gives the rank only) a rank waits for MPI to tell it; both ways give the
+# one-process picture. An environment that disagrees with MPI (here both ranks
+# told they are rank 0) stops the job with one line saying so.
+before=$failures
+env_run() {  # env_run ENV-ARGS... -- RAYFORM-ARGS...
+  local e=()
+  while [ "$1" != -- ]; do e+=("$1"); shift; done
+  shift
+  timeout 120 mpirun --allow-run-as-root --oversubscribe -np 2 env "${e[@]}" "$RAYFORM_BIN" "$@"
+}
+"$RAYFORM_BIN" render grid.obj -o "$PWD/env1.png" --size 40x30 -q || fail ranks-env "one process: exit $?"
+env_run -u OMPI_COMM_WORLD_RANK -u OMPI_COMM_WORLD_SIZE -- render grid.obj -o "$PWD/env2.png" --size 40x30 -q \
+  >env2.log 2>&1 || fail ranks-env "ranks from MPI: exit $?: $(cat env2.log)"
+cmp -s env1.png env2.png || fail ranks-env "ranks from MPI: the picture differs from the one-process picture"
+env_run OMPI_COMM_WORLD_RANK=0 -- render grid.obj -o "$PWD/env3.png" --size 40x30 -q >env3.log 2>&1; rc=$?
+[ $rc -ne 0 ] || fail ranks-env "ranks that disagree with MPI: exit 0"
+grep -q '^rayform: error: MPI says rank 1 of 2, the launcher.s environment rank 0 of 2' env3.log ||
+  fail ranks-env "no line naming the ranks that disagree: $(cat env3.log)"
+[ -e env3.png ] && fail ranks-env "ranks that disagree with MPI wrote an output"
+[ $failures -eq $before ] && echo "ok   [ranks-env] ranks from mpirun's environment or from MPI; a disagreement stops the job"
 
 # Progress from rank 0 only: mpirun on a terminal (a pty from util-linux
 # `script`) draws the line rank 0 writes into its stderr pipe, with the share
