@@ -22,13 +22,13 @@ const MpiPlugin* open_mpi_plugin(std::string* failure) {
   p.abort = reinterpret_cast<rayform_mpi_abort_fn>(dlsym(h, "rayform_mpi_abort"));
   p.allgather = reinterpret_cast<rayform_mpi_allgather_fn>(dlsym(h, "rayform_mpi_allgather"));
   p.sum = reinterpret_cast<rayform_mpi_sum_fn>(dlsym(h, "rayform_mpi_sum"));
-  p.broadcast = reinterpret_cast<rayform_mpi_broadcast_fn>(dlsym(h, "rayform_mpi_broadcast"));
+  p.allgather_parts = reinterpret_cast<rayform_mpi_allgather_parts_fn>(dlsym(h, "rayform_mpi_allgather_parts"));
   p.send = reinterpret_cast<rayform_mpi_send_fn>(dlsym(h, "rayform_mpi_send"));
   p.receive = reinterpret_cast<rayform_mpi_receive_fn>(dlsym(h, "rayform_mpi_receive"));
   p.counter_create = reinterpret_cast<rayform_mpi_counter_create_fn>(dlsym(h, "rayform_mpi_counter_create"));
   p.counter_next = reinterpret_cast<rayform_mpi_counter_next_fn>(dlsym(h, "rayform_mpi_counter_next"));
   p.counter_destroy = reinterpret_cast<rayform_mpi_counter_destroy_fn>(dlsym(h, "rayform_mpi_counter_destroy"));
-  if (!p.start || !p.finish || !p.abort || !p.allgather || !p.sum || !p.broadcast || !p.send || !p.receive ||
+  if (!p.start || !p.finish || !p.abort || !p.allgather || !p.sum || !p.allgather_parts || !p.send || !p.receive ||
       !p.counter_create || !p.counter_next || !p.counter_destroy) {
     *failure = "librayform_mpi.so lacks some of the rayform_mpi_* functions";
     return nullptr;

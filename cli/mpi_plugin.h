@@ -15,7 +15,7 @@ struct MpiPlugin {
   rayform_mpi_abort_fn abort = nullptr;
   rayform_mpi_allgather_fn allgather = nullptr;
   rayform_mpi_sum_fn sum = nullptr;
-  rayform_mpi_broadcast_fn broadcast = nullptr;
+  rayform_mpi_allgather_parts_fn allgather_parts = nullptr;
   rayform_mpi_send_fn send = nullptr;
   rayform_mpi_receive_fn receive = nullptr;
   rayform_mpi_counter_create_fn counter_create = nullptr;

@@ -28,8 +28,10 @@ typedef void (*rayform_mpi_abort_fn)(void);
 typedef void (*rayform_mpi_allgather_fn)(const void* mine, void* all, uint64_t bytes_each);
 // Collective: the sum of every rank's value.
 typedef long long (*rayform_mpi_sum_fn)(long long value);
-// Collective: rank `root`'s `bytes` bytes at `data` into every rank's `data`.
-typedef void (*rayform_mpi_broadcast_fn)(void* data, uint64_t bytes, int root);
+// Collective: each rank k's `sizes[k]` bytes at its `parts[k]` into every
+// rank's `parts[k]` (parts[rank] is sent, the others received), all the
+// transfers under way at once. Every rank passes the same sizes.
+typedef void (*rayform_mpi_allgather_parts_fn)(void* const* parts, const uint64_t* sizes);
 // Point to point on tag `tag`: the receiver names the same byte count.
 typedef void (*rayform_mpi_send_fn)(const void* data, uint64_t bytes, int to, int tag);
 typedef void (*rayform_mpi_receive_fn)(void* data, uint64_t bytes, int from, int tag);

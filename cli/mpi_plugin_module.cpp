@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <utility>
+#include <vector>
 
 #include <dirent.h>
 #include <netinet/in.h>
@@ -138,13 +139,20 @@ __attribute__((visibility("default"))) long long rayform_mpi_sum(long long value
   return sum;
 }
 
-__attribute__((visibility("default"))) void rayform_mpi_broadcast(void* data, uint64_t bytes, int root) {
-  for (uint64_t done = 0; done < bytes; done += piece_bytes) {
-    MPI_Request request;
-    MPI_Ibcast(static_cast<char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, root,
-               MPI_COMM_WORLD, &request);
-    rayform::cli::wait_without_spinning(&request);
-  }
+__attribute__((visibility("default"))) void rayform_mpi_allgather_parts(void* const* parts, const uint64_t* sizes) {
+  // One broadcast from each rank (in pieces MPI's int counts can hold), all
+  // started before any is waited for: a rank sends its part while it receives
+  // the others', where broadcasts in turn would leave one side idle.
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  std::vector<MPI_Request> requests;
+  for (int k = 0; k < ranks; ++k)
+    for (uint64_t done = 0; done < sizes[k]; done += piece_bytes) {
+      requests.emplace_back();
+      MPI_Ibcast(static_cast<char*>(parts[k]) + done, int(std::min(piece_bytes, sizes[k] - done)), MPI_BYTE, k,
+                 MPI_COMM_WORLD, &requests.back());
+    }
+  rayform::cli::wait_without_spinning(requests.data(), int(requests.size()));
 }
 
 __attribute__((visibility("default"))) void rayform_mpi_send(const void* data, uint64_t bytes, int to, int tag) {
