@@ -87,8 +87,15 @@ bool ranks_from_environment(Ranks* r) {
   return false;
 }
 
+// The line a rank that cannot use MPI prints before it stops.
+void say_mpi_unusable(const std::string& why) {
+  std::cerr << "rayform: error: started by an MPI launcher, but MPI cannot be used: " + why + "\n";
+}
+
 // Waits until MPI is up; a rank where it could not start stops the job.
-void wait_for_mpi() {
+// `take_ranks`: the_ranks are MPI's (the environment did not give them);
+// otherwise they must agree with MPI's.
+void wait_for_mpi(bool take_ranks) {
   std::unique_lock lock(mpi_thread->mutex);
   mpi_thread->changed.wait(lock, [] { return mpi_thread->up; });
   const bool ok = mpi_thread->ok;
@@ -96,15 +103,17 @@ void wait_for_mpi() {
   const Ranks mpi_ranks = mpi_thread->ranks;
   lock.unlock();
   if (!ok) {
-    std::cerr << "rayform: error: started by an MPI launcher, but MPI cannot be used: " + failure + "\n";
+    say_mpi_unusable(failure);
     plugin->abort();  // MPI is initialised (MPI_Init itself ends the job when it fails)
     std::exit(1);
   }
+  if (take_ranks) the_ranks = mpi_ranks;
   if (mpi_ranks.rank != the_ranks.rank || mpi_ranks.size != the_ranks.size) {
     std::cerr << "rayform: error: MPI says rank " + std::to_string(mpi_ranks.rank) + " of " +
                      std::to_string(mpi_ranks.size) + ", the launcher's environment rank " +
                      std::to_string(the_ranks.rank) + " of " + std::to_string(the_ranks.size) + "\n";
     plugin->abort();
+    std::exit(1);
   }
   mpi_up.store(true, std::memory_order_release);
 }
@@ -113,7 +122,7 @@ void wait_for_mpi() {
 
 const MpiPlugin* mpi() {
   if (!mpi_thread) return nullptr;
-  if (!mpi_up.load(std::memory_order_acquire)) wait_for_mpi();
+  if (!mpi_up.load(std::memory_order_acquire)) wait_for_mpi(/*take_ranks*/ false);
   return plugin;
 }
 
@@ -122,20 +131,13 @@ Ranks start_ranks() {
   std::string failure;
   plugin = open_mpi_plugin(&failure);
   if (!plugin) {
-    std::cerr << "rayform: error: started by an MPI launcher, but MPI cannot be used: " + failure + "\n";
+    say_mpi_unusable(failure);
     std::exit(1);
   }
   mpi_thread = new MpiThread;
   std::atexit(finish_mpi);
   mpi_thread->thread = std::thread(run_mpi_thread, mpi_thread);
-  if (!ranks_from_environment(&the_ranks)) {
-    // The ranks only MPI can tell: wait for it.
-    std::unique_lock lock(mpi_thread->mutex);
-    mpi_thread->changed.wait(lock, [] { return mpi_thread->up; });
-    the_ranks = mpi_thread->ranks;
-    lock.unlock();
-    mpi();
-  }
+  if (!ranks_from_environment(&the_ranks)) wait_for_mpi(/*take_ranks*/ true);  // only MPI can tell
   return the_ranks;
 }
 
