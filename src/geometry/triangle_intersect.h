@@ -4,7 +4,9 @@
 // the ray points along +z, and the edge functions are evaluated in double when
 // they round to zero, so that a ray through a shared edge or vertex is never
 // lost between two triangles. A hit is accepted only when t lies in the open
-// (tmin, tmax) and is larger than its own rounding-error bound.
+// (tmin, tmax) and is larger than its own rounding-error bound. Both hold for
+// floating point computed as written: compile callers with -ffp-contract=off,
+// as rayform's targets are (a fused a * b - c * d breaks the first).
 #pragma once
 
 #include "rayform/geometry/ray.h"
