@@ -21,10 +21,11 @@ TEST(FloatContraction, ProductsAreRoundedBeforeTheSum) {
   // ulp of 1; ties to even), so the sum is 0; fused it would be 2^-24.
   volatile float a = 1.f + 0x1p-12f, c = -(1.f + 0x1p-11f);
   EXPECT_EQ(product_plus(a, a, c), 0.f);
-  volatile float b = 1.f + 0x1p-12f, d = 1.f;
-  // Either order of the same two products gives exact negatives.
-  EXPECT_EQ(difference_of_products(a, b, d, d), -difference_of_products(d, d, a, b));
-  EXPECT_EQ(difference_of_products(a, b, d, d), 0x1p-11f);
+  volatile float one = 1.f;
+  // Either order of the same two products gives exact negatives: a * a - 1
+  // is the rounded 2^-11 (fused it would be 2^-11 + 2^-24).
+  EXPECT_EQ(difference_of_products(a, a, one, one), -difference_of_products(one, one, a, a));
+  EXPECT_EQ(difference_of_products(a, a, one, one), 0x1p-11f);
 }
 
 }  // namespace
