@@ -5,11 +5,11 @@
 #include "rayform/importers/course_txt/course_writer.h"
 #include "course_args.h"
 #include "messages.h"
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "render_job.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_writer.h"
 
@@ -140,7 +140,7 @@ Examples:
   rayform convert model.gltf model.obj --flatten
   rayform convert model.glb model.txt --out-dir model_files   (meshes and textures in model_files/))");
   c->callback([a, out_dir] {
-    if (!ranks().root()) return;  // under mpirun, rank 0 alone writes the files
+    if (!distributed::ranks().root()) return;  // under mpirun, rank 0 alone writes the files
     a->out_dir_given = out_dir->count() > 0;
     run_convert(*a);
   });

@@ -1,6 +1,6 @@
 #include "commands.h"
 #include "messages.h"
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/text_format.h"
@@ -72,7 +72,7 @@ void add_info_command(CLI::App& app) {
   info->add_flag("--json", a->json, "Print the same as one JSON object on stdout, the warnings in it too");
   add_read_flags(*info, a->read);
   info->callback([a] {
-    if (!ranks().root()) return;  // under mpirun, one report (rank 0's), not one per rank
+    if (!distributed::ranks().root()) return;  // under mpirun, one report (rank 0's), not one per rank
     LoadOptions lo{dialect_from_string(a->dialect)};
     apply_read_flags(a->read, lo);
     LoadedScene loaded = load_scene(a->scene, lo);

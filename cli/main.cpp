@@ -3,10 +3,10 @@
 #include "commands.h"
 #include "course_args.h"
 #include "heap_reuse.h"
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "render_job.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/image/interrupt_cleanup.h"
 
 #include <CLI/CLI.hpp>
@@ -52,9 +52,10 @@ Exit status:
 int run(int argc, char** argv) {
   // Ctrl-C: temporaries removed, a progress line ended, then this line.
   set_interrupt_message("rayform: interrupted");
-  if (ranks().distributed())
+  if (distributed::ranks().distributed())
     // mpirun ends the other ranks with SIGTERM when one fails or is killed.
-    set_interrupt_message("rayform: rank " + std::to_string(ranks().rank) + " of " + std::to_string(ranks().size) +
+    set_interrupt_message("rayform: rank " + std::to_string(distributed::ranks().rank) + " of " +
+                          std::to_string(distributed::ranks().size) +
                           " stopped: the MPI job was ended (a rank failed, was killed or interrupted); no output "
                           "written");
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -64,8 +65,9 @@ int run(int argc, char** argv) {
   }
 
   CLI::App app{"rayform " RAYFORM_VERSION ": a fast and accurate ray caster for course .txt, OBJ and glTF scenes"};
-  app.set_version_flag("--version", std::string("rayform " RAYFORM_VERSION) +
-                                        (built_with_mpi() ? " (MPI: mpirun spreads renders over ranks)" : ""));
+  app.set_version_flag("--version",
+                       std::string("rayform " RAYFORM_VERSION) +
+                           (distributed::built_with_mpi() ? " (MPI: mpirun spreads renders over ranks)" : ""));
   app.footer(std::string(examples) + exit_status);
   app.require_subcommand(1);
   add_quiet_before_command(app);
@@ -99,13 +101,13 @@ int main(int argc, char** argv) {
   using rayform::cli::ranks;
   rayform::cli::keep_freed_heap_for_reuse();
   try {
-    rayform::cli::start_ranks();
+    rayform::distributed::start_ranks();
     return rayform::cli::run(argc, argv);
   } catch (const rayform::cli::UsageError& e) {
     // Every rank parses the same command line: one message is enough.
-    if (ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
+    if (distributed::ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
     return 2;
-  } catch (const rayform::cli::ReportedElsewhere&) {
+  } catch (const rayform::distributed::ReportedElsewhere&) {
     return 1;
   } catch (const rayform::Error& e) {
     std::cerr << std::string("rayform: error: ") + e.what() + "\n";  // one write: ranks' lines stay whole

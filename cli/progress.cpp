@@ -1,6 +1,6 @@
 #include "progress.h"
 
-#include "mpi_launcher.h"
+#include "rayform/distributed/mpi_launcher.h"
 
 #include "rayform/image/interrupt_cleanup.h"
 
@@ -34,7 +34,7 @@ std::string progress_text(const std::string& label, float fraction, double elaps
 
 bool stderr_shows_on_terminal() {
   if (isatty(STDERR_FILENO)) return true;
-  if (!launched_by_mpi_launcher()) return false;
+  if (!distributed::launched_by_mpi_launcher()) return false;
   // mpirun forwards its ranks' stderr through pipes to its own: on the node
   // where it runs, it is the ranks' parent, and its stderr is the user's.
   const std::string parent_stderr = "/proc/" + std::to_string(getppid()) + "/fd/2";

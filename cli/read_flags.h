@@ -1,5 +1,5 @@
 // The flags of every command that reads a scene: --limit NAME=VALUE
-// (repeatable; scene/limits.h), --confine (referenced_files.h) and
+// (repeatable; base/limits.h), --confine (referenced_files.h) and
 // -q/--quiet (messages.h), which may also come before the subcommand
 // (`rayform -q render ...`).
 #pragma once

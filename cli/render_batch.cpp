@@ -2,8 +2,8 @@
 
 #include "course_args.h"
 #include "output_names.h"
-#include "ranks.h"
-#include "work_counter.h"
+#include "rayform/distributed/ranks.h"
+#include "rayform/distributed/work_counter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -66,12 +66,12 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
 
 int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool stats) {
   using clock = std::chrono::steady_clock;
-  const Ranks& r = ranks();
+  const distributed::Ranks& r = distributed::ranks();
   const auto start = clock::now();
   long long done = 0, failed = 0;
   double busy_s = 0.0;
   {
-    WorkCounter counter;
+    distributed::WorkCounter counter;
     // The scene of this rank's last turntable frame: the next frame of the
     // same file starts from it instead of reading the file again.
     std::shared_ptr<const LoadedScene> last;
@@ -106,13 +106,13 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool st
       busy_s += std::chrono::duration<double>(clock::now() - t).count();
     }
   }  // the counter's window is freed together, once every rank has taken its last number
-  const long long failed_total = sum_over_ranks(failed);
+  const long long failed_total = distributed::sum_over_ranks(failed);
   const double wall_s = std::chrono::duration<double>(clock::now() - start).count();
   if (stats) {
     std::ostringstream line;
     line << "stats: rank " << r.rank << " of " << r.size << ": " << done + failed << " renders (" << failed
          << " failed), busy " << busy_s << " s of " << wall_s << " s\n";
-    for (const std::string& text : gather_text(line.str())) std::cerr << text;
+    for (const std::string& text : distributed::gather_text(line.str())) std::cerr << text;
   }
   if (failed_total > 0 && r.root())
     std::cerr << "rayform: " << failed_total << " of " << jobs.size() << " renders failed\n";

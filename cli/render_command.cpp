@@ -1,7 +1,7 @@
 #include "commands.h"
 #include "course_args.h"
 #include "output_names.h"
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "render_batch.h"
 #include "render_job.h"
@@ -265,7 +265,7 @@ void add_render_command(CLI::App& app) {
       // A batch: each render on one rank (all in this process without mpirun).
       const std::vector<RenderJob> jobs = batch_jobs(a->job, a->inputs, a->turntable);
       if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->job.stats); status != 0)
-        throw ReportedElsewhere("renders failed");
+        throw distributed::ReportedElsewhere("renders failed");
       return;
     }
     // One picture (over every rank under mpirun); a template names it as a batch would.

@@ -1,10 +1,10 @@
 #include "render_job.h"
 
 #include "course_args.h"
-#include "distributed_frame.h"
+#include "rayform/distributed/distributed_frame.h"
 #include "messages.h"
-#include "rank_work_share.h"
-#include "ranks.h"
+#include "rayform/distributed/rank_work_share.h"
+#include "rayform/distributed/ranks.h"
 
 #include "progress.h"
 #include "rayform/render/aov_images.h"
@@ -14,7 +14,7 @@
 #include "rayform/image/output_files.h"
 #include "rayform/image/quantize.h"
 #include "rayform/render/render.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
 #include "rayform/scene/scene_stats.h"
 
@@ -121,8 +121,8 @@ float background_from_display(float v) {
 // (rank 0 reports its own; the others would say the same), rank 0 says that
 // another failed, and every rank stops with status 1.
 void agree_scene_ready(const std::exception_ptr& failure) {
-  const std::vector<bool> ok = gather_flags(!failure);
-  const Ranks& r = ranks();
+  const std::vector<bool> ok = distributed::gather_flags(!failure);
+  const distributed::Ranks& r = distributed::ranks();
   if (failure && r.root()) std::rethrow_exception(failure);
   if (failure && ok[0]) {
     try {
@@ -131,14 +131,14 @@ void agree_scene_ready(const std::exception_ptr& failure) {
       throw Error("rank " + std::to_string(r.rank) + ": " + e.what());  // printed by main on any rank
     }
   }
-  if (failure) throw ReportedElsewhere("rank 0 reports the error");
+  if (failure) throw distributed::ReportedElsewhere("rank 0 reports the error");
   if (std::find(ok.begin(), ok.end(), false) == ok.end()) return;
   const int other = int(std::find(ok.begin(), ok.end(), false) - ok.begin());
   if (r.root())
     throw Error("rank " + std::to_string(other) +
                 " of the MPI job could not load or prepare the scene (its message "
                 "above): nothing written");
-  throw ReportedElsewhere("another rank failed");
+  throw distributed::ReportedElsewhere("another rank failed");
 }
 
 // The ranks of a spread frame read one file before any shared work: a large
@@ -169,14 +169,14 @@ class InputAgreement {
   // Collective, the first time.
   void agree() {
     if (std::exchange(agreed_, true)) return;
-    const std::vector<long long> all = gather_numbers(seen_);
+    const std::vector<long long> all = distributed::gather_numbers(seen_);
     const auto other = std::find_if(all.begin(), all.end(), [&](long long s) { return s != all[0]; });
     if (other == all.end()) return;
     auto what = [](long long s) {
       return s < 0 ? std::string("cannot open it (") + std::strerror(int(-s)) + ")"
                    : "reads " + std::to_string(s) + " bytes";
     };
-    if (!ranks().root()) throw ReportedElsewhere("rank 0 reports the error");
+    if (!distributed::ranks().root()) throw distributed::ReportedElsewhere("rank 0 reports the error");
     throw Error(input_ + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(*other) +
                 ", rank 0 " + what(all[0]) + ": every rank must read the same file; nothing written");
   }
@@ -257,13 +257,13 @@ void run_render_job(const RenderJob& job) {
   // Under mpirun every rank loads the scene (sharing a large OBJ's parse) and
   // prepares it (sharing the BVH builds of large meshes), then renders a share
   // of the frame.
-  const Ranks& rank = ranks();
+  const distributed::Ranks& rank = distributed::ranks();
   const bool spread = job.spread_frame && rank.distributed();
   std::optional<InputAgreement> input;
   WorkShare share_ranks;
   if (spread) {
     input.emplace(job.input);
-    share_ranks = rank_work_share();
+    share_ranks = distributed::rank_work_share();
     share_ranks.exchange = [exchange = share_ranks.exchange, &input](std::vector<std::byte> mine) {
       input->agree();
       return exchange(std::move(mine));
@@ -309,7 +309,7 @@ void run_render_job(const RenderJob& job) {
   // when every one of them has loaded the scene.
   bool all_loaded = !failure;
   if (spread) {
-    const std::vector<bool> loaded_ok = gather_flags(!failure);
+    const std::vector<bool> loaded_ok = distributed::gather_flags(!failure);
     all_loaded = std::find(loaded_ok.begin(), loaded_ok.end(), false) == loaded_ok.end();
   }
   PrepareOptions po;
@@ -337,8 +337,8 @@ void run_render_job(const RenderJob& job) {
   Progress progress("rendering", quiet || !rank.root());
   if (progress.enabled()) ro.progress = [&](float f) { progress.update(f); };
   auto t_render = clock::now();
-  FrameShare share;
-  RenderResult result = spread ? render_frame_over_ranks(prepared, ro, &share) : render(prepared, ro);
+  distributed::FrameShare share;
+  RenderResult result = spread ? distributed::render_frame_over_ranks(prepared, ro, &share) : render(prepared, ro);
   double render_s = seconds_since(t_render);
   progress.finish();
   if (spread && job.stats) {
@@ -347,7 +347,7 @@ void run_render_job(const RenderJob& job) {
     line << "stats: rank " << rank.rank << " of " << rank.size << ": " << share.tiles << " of " << tile_grid(ro).count()
          << " tiles, load " << load_s << " s, prepare " << prepare_s << " s, render " << share.render_s << " s (CPU "
          << share.render_cpu_s << " s), gather " << share.gather_s << " s\n";
-    for (const std::string& text : gather_text(line.str())) std::cerr << text;
+    for (const std::string& text : distributed::gather_text(line.str())) std::cerr << text;
   }
   if (spread && !rank.root()) return;  // rank 0 writes the outputs
   auto t_write = clock::now();

@@ -15,7 +15,7 @@
 #include <rayform/render/color_output.h>
 #include <rayform/render/prepared_scene.h>
 #include <rayform/render/render.h>
-#include <rayform/scene/error.h>
+#include <rayform/base/error.h>
 
 #include <cstdlib>
 #include <iostream>

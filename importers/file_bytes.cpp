@@ -1,6 +1,6 @@
 #include "rayform/importers/file_bytes.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>

@@ -1,7 +1,7 @@
 #include "rayform/importers/scene_io.h"
 
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 
 #include <filesystem>
 #include <system_error>

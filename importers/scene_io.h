@@ -5,9 +5,9 @@
 #include "rayform/importers/gltf/gltf_reader.h"
 #include "rayform/importers/obj/obj_reader.h"
 #include "rayform/importers/referenced_files.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/scene.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <optional>
 #include <string>

@@ -3,8 +3,8 @@
 #include "rayform/importers/course_txt/course_writer.h"
 #include "rayform/importers/gltf/gltf_writer.h"
 #include "rayform/importers/obj/obj_writer.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 #include "rayform/importers/scene_flatten.h"
 
 #include <filesystem>

@@ -1,8 +1,8 @@
 #include "rayform/importers/texture_files.h"
 
 #include "rayform/image/image.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 
 #include <stb_image_write.h>
 

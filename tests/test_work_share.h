@@ -1,9 +1,9 @@
-// A WorkShare (rayform/scene/work_share.h) among threads of one process,
+// A WorkShare (rayform/base/work_share.h) among threads of one process,
 // for tests of work shared among parts: the exchange is an all-gather over a
 // barrier and a slot per part.
 #pragma once
 
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <barrier>
 #include <cstddef>

@@ -3,7 +3,7 @@
 #include "rayform/importers/course_txt/course_mesh.h"
 #include "rayform/importers/course_txt/course_tokenizer.h"
 #include "rayform/importers/file_bytes.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -1,6 +1,6 @@
 #include "rayform/importers/course_txt/course_tokenizer.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <cerrno>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include "rayform/image/output_files.h"
 #include "rayform/importers/scene_writer.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
 #include "rayform/importers/text_format.h"
 #include "rayform/importers/texture_files.h"

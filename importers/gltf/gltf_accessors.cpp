@@ -1,8 +1,8 @@
 #include "rayform/importers/gltf/gltf_accessors.h"
 
 #include "rayform/importers/gltf/gltf_compression.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/error.h"
+#include "rayform/base/limits.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,6 +1,6 @@
 #include "rayform/importers/gltf/gltf_compression.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>

@@ -1,6 +1,6 @@
 #include "rayform/importers/gltf/gltf_material.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

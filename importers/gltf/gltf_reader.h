@@ -37,7 +37,7 @@
 #include "rayform/importers/gltf/gltf_material.h"
 #include "rayform/image/image_decode.h"
 #include "rayform/importers/referenced_files.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/scene.h"
 
 #include <string>

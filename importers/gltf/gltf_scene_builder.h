@@ -13,7 +13,7 @@
 #include "rayform/importers/gltf/gltf_file_access.h"
 #include "rayform/importers/gltf/gltf_messages.h"
 #include "rayform/importers/gltf/gltf_reader.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>

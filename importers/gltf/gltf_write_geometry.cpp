@@ -4,7 +4,7 @@
 // their exact form in extras, and glTF meshes shared where the same shapes
 // recur.
 #include "rayform/importers/gltf/gltf_builder.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/importers/shape_tessellation.h"
 
 #include <algorithm>

@@ -4,8 +4,8 @@
 // PNG or JPEG images (beside the file or in its buffer) with their samplers.
 #include "rayform/importers/gltf/gltf_builder.h"
 #include "rayform/importers/gltf/gltf_material.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 #include "rayform/importers/text_format.h"
 #include "rayform/importers/texture_files.h"
 

@@ -2,7 +2,7 @@
 // per group or transform node, leading shape children gathered as its mesh;
 // a matrix that one glTF node cannot hold (a shear) split into two that can.
 #include "rayform/importers/gltf/gltf_builder.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // file checked for its whole length and synced, then all renamed into place.
 #include "rayform/importers/gltf/gltf_builder.h"
 #include "rayform/image/checked_write.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
 #include "rayform/importers/obj/obj_geometry.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <tiny_obj_loader.h>
 

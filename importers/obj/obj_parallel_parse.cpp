@@ -4,7 +4,7 @@
 #include "rayform/importers/obj/obj_parse_bytes.h"
 #include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <tbb/parallel_for.h>
 

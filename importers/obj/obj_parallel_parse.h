@@ -26,7 +26,7 @@
 // file).
 #pragma once
 
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <tiny_obj_loader.h>
 
@@ -53,7 +53,7 @@ using MaterialReaderFactory = std::function<std::unique_ptr<tinyobj::MaterialRea
 // once. False, with `out` unspecified, where the result could differ from one
 // LoadObj over the whole text: then parse it that way.
 //
-// With a `share` of several parts (rayform/scene/work_share.h), every part
+// With a `share` of several parts (rayform/base/work_share.h), every part
 // calls this with the same text, readers and chunk size; each scans and
 // parses only the chunks that fall to it (every parts-th one). A first
 // exchange gives every part every chunk's scan (obj_chunk_scan.h), from

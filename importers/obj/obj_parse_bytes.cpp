@@ -1,6 +1,6 @@
 #include "rayform/importers/obj/obj_parse_bytes.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <cstdint>

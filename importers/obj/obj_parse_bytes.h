@@ -1,5 +1,5 @@
 // What the parts of a shared chunked parse (obj_parallel_parse.h,
-// rayform/scene/work_share.h) send each other, as bytes:
+// rayform/base/work_share.h) send each other, as bytes:
 // - each chunk's scan (obj_chunk_scan.h): its counts, and its state lines as
 //   where they are in the text (every part has the same text);
 // - each chunk's tinyobjloader parse: the vertex arrays the join uses

@@ -9,7 +9,7 @@
 #include "rayform/importers/obj/obj_vertex_weld.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -28,7 +28,7 @@
 
 #include "rayform/importers/referenced_files.h"
 #include "rayform/scene/scene.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <cstddef>
 #include <string>

@@ -1,6 +1,6 @@
 #include "rayform/importers/obj/obj_smooth_normals.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

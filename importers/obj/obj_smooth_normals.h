@@ -4,7 +4,7 @@
 // that the result does not depend on how a polygon was split), added in face
 // order. The reader normalises the sums per vertex.
 //
-// Shared among the parts of a WorkShare (rayform/scene/work_share.h), each
+// Shared among the parts of a WorkShare (rayform/base/work_share.h), each
 // part sums the positions of its range only (position ranges of equal size,
 // in part order: the faces that touch a range are weighed by its part), and
 // one exchange gives every part every range's sums: the same floats, bit for
@@ -14,7 +14,7 @@
 #pragma once
 
 #include "rayform/math/math.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <tiny_obj_loader.h>
 

@@ -2,7 +2,7 @@
 
 #include "rayform/image/output_files.h"
 #include "rayform/importers/scene_writer.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/importers/scene_flatten.h"
 #include "rayform/importers/shape_tessellation.h"
 #include "rayform/importers/text_format.h"

@@ -12,7 +12,7 @@
 #include "rayform/accel/bvh.h"
 #include "rayform/accel/huge_page_allocator.h"
 #include "rayform/geometry/triangle_intersect.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/work_share.h"
 
 #include <cstdint>
 #include <span>

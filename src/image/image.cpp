@@ -5,8 +5,8 @@
 #include "rayform/image/oiio_plugin.h"
 #include "rayform/image/replace_file.h"
 #include "rayform/image/stb_writer.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/file_extension.h"
+#include "rayform/base/error.h"
+#include "rayform/base/file_extension.h"
 
 #include <cstring>
 #include <filesystem>

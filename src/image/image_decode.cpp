@@ -1,7 +1,7 @@
 #include "rayform/image/image_decode.h"
 
 #include "rayform/image/image_decoders.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 // (oiio_plugin.h), which get the same limit. stb_image, not meant for untrusted files, decodes nothing.
 #pragma once
 
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -23,7 +23,7 @@ namespace rayform {
 
 struct DecodeOptions {
   // Images of more texels (width * height) are refused before decoding. The
-  // default is Limits::texture_texels (scene/limits.h: 2^28, 16384 x 16384,
+  // default is Limits::texture_texels (base/limits.h: 2^28, 16384 x 16384,
   // the largest texture a GPU accepts; 1 GiB as RGBA8).
   uint64_t max_texels = Limits{}.texture_texels;
 };

@@ -3,8 +3,8 @@
 #include "rayform/image/checked_write.h"
 
 #include "rayform/image/oiio_plugin_abi.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/plugin_library.h"
+#include "rayform/base/error.h"
+#include "rayform/base/plugin_library.h"
 
 #include <dlfcn.h>
 

@@ -3,7 +3,7 @@
 #include "rayform/image/checked_write.h"
 #include "rayform/image/interrupt_cleanup.h"
 #include "rayform/image/replace_file.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <atomic>

@@ -2,7 +2,7 @@
 
 #include "rayform/image/color.h"
 #include "rayform/render/aov_images.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <cmath>

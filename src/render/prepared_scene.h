@@ -8,7 +8,7 @@
 #include "rayform/accel/mesh_accel.h"
 #include "rayform/render/mesh_accel_cache.h"
 #include "rayform/render/texture_sampler.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene.h"
 

@@ -8,7 +8,7 @@
 #include "rayform/render/cube_map.h"
 #include "rayform/render/render_memory.h"
 #include "rayform/render/shade_phong.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -1,7 +1,7 @@
 #include "rayform/render/texture_sampler.h"
 
 #include "rayform/image/color.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <algorithm>
 #include <cmath>

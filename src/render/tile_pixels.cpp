@@ -1,6 +1,6 @@
 #include "rayform/render/tile_pixels.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <cstring>
 #include <string>

@@ -5,8 +5,8 @@
 // error.
 #pragma once
 
-#include "rayform/scene/error.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/error.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/scene.h"
 
 #include <string>

@@ -1,6 +1,6 @@
 #include "rayform/scene/scene_builder.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <cmath>
 #include <string>

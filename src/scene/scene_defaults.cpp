@@ -1,6 +1,6 @@
 #include "rayform/scene/scene_defaults.h"
 
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_stats.h"
 
 #include <algorithm>

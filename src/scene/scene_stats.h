@@ -2,7 +2,7 @@
 #pragma once
 
 #include "rayform/geometry/bounds.h"
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/scene.h"
 
 #include <string>

@@ -5,7 +5,7 @@
 // message starts with the caller's `where`, never a crash (these tests also run
 // under ASan+UBSan, so they stay small).
 #include "rayform/importers/gltf/gltf_compression.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>

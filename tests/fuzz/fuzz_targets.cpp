@@ -4,7 +4,7 @@
 #include "rayform/image/image.h"
 #include "rayform/importers/obj/obj_reader.h"
 #include "rayform/render/prepared_scene.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"
 #include "test_bytes.h"

@@ -11,7 +11,7 @@
 #include "rayform/math/perlin_noise.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_importers.h"
 #include "test_paths.h"
 

@@ -4,7 +4,7 @@
 #include "rayform/importers/course_txt/course_reader.h"
 #include "rayform/image/image.h"
 #include "rayform/render/render.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/node_walk.h"
 #include "test_importers.h"
 #include "test_paths.h"

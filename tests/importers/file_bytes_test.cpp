@@ -1,7 +1,7 @@
 // FileBytes: a regular file mapped, an empty one, a FIFO read to the end, a
 // missing file named in the error.
 #include "rayform/importers/file_bytes.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include "rayform/importers/gltf/gltf_reader.h"
 #include "rayform/importers/gltf/gltf_writer.h"
 #include "rayform/render/prepared_scene.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene_stats.h"
 #include "test_importers.h"

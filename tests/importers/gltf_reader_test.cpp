@@ -5,7 +5,7 @@
 #include "rayform/importers/gltf/gltf_material.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/shade_phong.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"

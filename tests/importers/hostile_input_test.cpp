@@ -1,11 +1,11 @@
 // Hostile files refused before they cost memory, time or secrets: the limits
-// (scene/limits.h) checked by the readers and load_scene, glTF node graphs
+// (base/limits.h) checked by the readers and load_scene, glTF node graphs
 // that are not trees, JSON nested too deep, files that never end (devices),
 // and --confine (referenced_files.h) for every kind of file a scene names.
 // All inputs are written here.
 #include "rayform/importers/gltf/gltf_reader.h"
 #include "rayform/importers/referenced_files.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/importers/scene_io.h"
 #include "rayform/importers/scene_writer.h"
 #include "test_paths.h"

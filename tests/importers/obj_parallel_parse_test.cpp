@@ -5,7 +5,7 @@
 #include "rayform/importers/obj/obj_parallel_parse.h"
 #include "rayform/importers/obj/obj_reader.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "importers/obj_test_texts.h"
 #include "test_importers.h"
 #include "test_paths.h"

@@ -1,7 +1,7 @@
 // OBJ + MTL reader: shared assets (counts, materials, paths), small files of
 // our own for every rule, and the obj2gltf edge cases as a table.
 #include "rayform/importers/obj/obj_reader.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"

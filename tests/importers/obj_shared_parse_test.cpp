@@ -7,8 +7,8 @@
 #include "importers/obj_test_texts.h"
 #include "test_work_share.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/error.h"
+#include "rayform/base/work_share.h"
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include "test_work_share.h"
 #include "rayform/importers/obj/obj_reader.h"
 #include "rayform/importers/obj/obj_smooth_normals.h"
-#include "rayform/scene/error.h"
-#include "rayform/scene/work_share.h"
+#include "rayform/base/error.h"
+#include "rayform/base/work_share.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Default camera, head-light and light rig for scenes whose files have none.
 #include "rayform/importers/obj/obj_reader.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
 #include "rayform/scene/scene_stats.h"
 #include "test_paths.h"

@@ -5,7 +5,7 @@
 // (orbit, adjustments) is in place before the rig, which follows it.
 #include "rayform/importers/scene_ready.h"
 #include "rayform/render/prepared_scene.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_stats.h"
 #include "test_paths.h"
 

@@ -5,7 +5,7 @@
 // from the glTF extras; what a format cannot hold must be reported.
 #include "rayform/importers/gltf/gltf_writer.h"
 #include "rayform/importers/gltf/gltf_material.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"

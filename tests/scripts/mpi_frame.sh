@@ -138,7 +138,7 @@ grep -q '^rayform: error: started by an MPI launcher, but MPI cannot be used: .*
 [ -e np.png ] && fail plugin "an output was written without MPI"
 [ $failures -eq 0 ] && echo "ok   [plugin] MPI loaded by ranks only; a broken plugin stops the job with a message"
 
-# MPI starts on a thread of its own (cli/ranks.h), the ranks taken at once
+# MPI starts on a thread of its own (distributed/ranks.h), the ranks taken at once
 # from mpirun's environment. Without them there (as under a PMIx launcher,
 # which gives the rank only) a rank waits for MPI to tell it; both ways give the
 # one-process picture. An environment that disagrees with MPI (here both ranks

@@ -6,7 +6,7 @@
 #include "rayform/image/color.h"
 #include "rayform/image/quantize.h"
 #include "rayform/render/color_output.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 // RLE HDR that used to hang stb_image.
 #include "rayform/image/image.h"
 #include "rayform/image/image_decode.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

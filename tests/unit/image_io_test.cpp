@@ -3,7 +3,7 @@
 // PNG, BMP and EXR; failures throw and leave no file (nor temporary) behind.
 #include "rayform/image/image.h"
 #include "rayform/math/math.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

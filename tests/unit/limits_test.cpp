@@ -1,6 +1,6 @@
-// Limits (scene/limits.h): what --limit accepts, and the instance count of a
+// Limits (base/limits.h): what --limit accepts, and the instance count of a
 // node graph measured without walking its paths (scene/node_walk.h).
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 #include "rayform/scene/node_walk.h"
 
 #include <gtest/gtest.h>

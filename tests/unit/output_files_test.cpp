@@ -2,7 +2,7 @@
 // or nothing. Image writes through it are covered by image_io_test.cpp; the
 // scene writers' failures by tests/importers/scene_writer_test.cpp.
 #include "rayform/image/output_files.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>

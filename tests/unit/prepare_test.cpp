@@ -5,7 +5,7 @@
 // and the feature flags the render loop relies on.
 #include "rayform/importers/course_txt/course_reader.h"
 #include "rayform/render/prepared_scene.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/procedural_mesh.h"
 #include "test_paths.h"
 #include "test_bytes.h"

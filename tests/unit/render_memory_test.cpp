@@ -1,7 +1,7 @@
 // render_memory.h: the bytes an image needs, per output, and the one-line
 // refusal of a size that does not fit (also through render()).
 #include "rayform/render/render_memory.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 
 #include <gtest/gtest.h>
 

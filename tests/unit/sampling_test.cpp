@@ -6,7 +6,7 @@
 // stratified one, and the independence of all of them from threads and tiles.
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "test_scenes.h"
 
 #include <gtest/gtest.h>

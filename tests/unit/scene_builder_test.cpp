@@ -3,7 +3,7 @@
 // an error naming it that leaves the scene unchanged.
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>

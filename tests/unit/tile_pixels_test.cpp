@@ -2,11 +2,11 @@
 // parts together (tile_pixels.h) gives render()'s image bit for bit: every
 // buffer, whichever part renders which tile, in linear and 8-bit colour, with
 // coverage, for the eight-ray packet path and the sampled path. This is what
-// the MPI driver of the command line (cli/mpi_frame.cpp) does across processes.
+// the MPI driver of the command line (distributed/distributed_frame.cpp) does across processes.
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
 #include "rayform/render/tile_pixels.h"
-#include "rayform/scene/error.h"
+#include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
 #include "rayform/importers/scene_io.h"
 #include "test_paths.h"

@@ -1,8 +1,8 @@
-#include "distributed_frame.h"
+#include "rayform/distributed/distributed_frame.h"
 
-#include "ranks.h"
-#include "tile_gather.h"
-#include "work_counter.h"
+#include "rayform/distributed/ranks.h"
+#include "rayform/distributed/tile_gather.h"
+#include "rayform/distributed/work_counter.h"
 
 #include <chrono>
 #include <ctime>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 RenderResult render_frame_over_ranks(const PreparedScene& scene, const RenderOptions& options, FrameShare* share) {
   using clock = std::chrono::steady_clock;
@@ -53,4 +53,4 @@ RenderResult render_frame_over_ranks(const PreparedScene& scene, const RenderOpt
   }
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -11,7 +11,7 @@
 #include <chrono>
 #include <thread>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 // MPI_Waitall without polling: tests every 50 us for the first 5 ms, then every 0.5 ms.
 inline void wait_without_spinning(MPI_Request* requests, int count = 1) {
@@ -30,4 +30,4 @@ inline void barrier_without_spinning() {
   wait_without_spinning(&request);
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -7,7 +7,7 @@
 
 #include <memory>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 class WorkCounter {
  public:
@@ -26,4 +26,4 @@ class WorkCounter {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

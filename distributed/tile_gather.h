@@ -6,7 +6,7 @@
 
 #include <vector>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 // Collective. Each rank passes its result and the tiles it rendered into
 // it; afterwards rank 0's `result` holds every rank's tiles (the others' are
@@ -14,4 +14,4 @@ namespace rayform::cli {
 // rank: besides the image, each holds one piece at a time.
 void gather_tiles(RenderResult& result, const TileGrid& grid, const std::vector<int>& mine);
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -1,10 +1,10 @@
 // ranks.h over librayform_mpi.so (mpi_plugin.h), opened only when an MPI
 // launcher started this process; otherwise rank 0 of 1 and every operation
 // is local.
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 
-#include "mpi_launcher.h"
-#include "mpi_plugin.h"
+#include "rayform/distributed/mpi_launcher.h"
+#include "rayform/distributed/mpi_plugin.h"
 
 #include <atomic>
 #include <condition_variable>
@@ -15,7 +15,7 @@
 #include <thread>
 #include <utility>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 namespace {
 
 Ranks the_ranks;
@@ -185,4 +185,4 @@ void abort_ranks(const std::string& message) {
   std::exit(1);
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -1,10 +1,10 @@
-#include "mpi_plugin.h"
+#include "rayform/distributed/mpi_plugin.h"
 
-#include "rayform/scene/plugin_library.h"
+#include "rayform/base/plugin_library.h"
 
 #include <dlfcn.h>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 const MpiPlugin* open_mpi_plugin(std::string* failure) {
   static MpiPlugin plugin;
@@ -37,4 +37,4 @@ const MpiPlugin* open_mpi_plugin(std::string* failure) {
   return &plugin;
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

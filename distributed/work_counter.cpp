@@ -1,13 +1,13 @@
 // work_counter.h: a counter in an MPI window on rank 0 (mpi_plugin_abi.h)
 // when distributed, otherwise a local atomic.
-#include "work_counter.h"
+#include "rayform/distributed/work_counter.h"
 
-#include "mpi_plugin.h"
-#include "ranks.h"
+#include "rayform/distributed/mpi_plugin.h"
+#include "rayform/distributed/ranks.h"
 
 #include <atomic>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 struct WorkCounter::Impl {
   std::atomic<long long> local{0};  // not distributed
@@ -24,4 +24,4 @@ WorkCounter::~WorkCounter() {
 
 long long WorkCounter::next() { return impl_->shared ? mpi()->counter_next(impl_->shared) : impl_->local++; }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

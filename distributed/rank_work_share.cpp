@@ -2,14 +2,14 @@
 // rank's byte count, then every rank's bytes from it, the transfers at once. The
 // plugin waits without spinning: a rank that finished its part early must not
 // take a core from one still working on its own.
-#include "rank_work_share.h"
+#include "rayform/distributed/rank_work_share.h"
 
-#include "mpi_plugin.h"
-#include "ranks.h"
+#include "rayform/distributed/mpi_plugin.h"
+#include "rayform/distributed/ranks.h"
 
 #include <cstdint>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 namespace {
 
 std::vector<std::vector<std::byte>> allgather_bytes(std::vector<std::byte> mine) {
@@ -41,4 +41,4 @@ WorkShare rank_work_share() {
   return share;
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

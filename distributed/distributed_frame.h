@@ -8,7 +8,7 @@
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 // What one rank did, for --stats.
 struct FrameShare {
@@ -24,4 +24,4 @@ struct FrameShare {
 // rank ends the whole job (abort_ranks): the others would wait for its tiles.
 RenderResult render_frame_over_ranks(const PreparedScene& scene, const RenderOptions& options, FrameShare* share);
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

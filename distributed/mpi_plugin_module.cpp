@@ -2,8 +2,8 @@
 // (mpi_plugin.cpp) only when mpirun or another MPI launcher started it, so a
 // rayform run on its own does not load libmpi and its libraries (about 2 ms
 // of every start).
-#include "mpi_plugin_abi.h"
-#include "mpi_wait.h"
+#include "rayform/distributed/mpi_plugin_abi.h"
+#include "rayform/distributed/mpi_wait.h"
 
 #include <mpi.h>
 
@@ -71,14 +71,14 @@ Counter* make_counter() {
     *c->value = 0;
     MPI_Win_unlock(0, c->window);
   }
-  rayform::cli::barrier_without_spinning();  // the counter is 0 before anyone takes a number
+  rayform::distributed::barrier_without_spinning();  // the counter is 0 before anyone takes a number
   MPI_Win_lock_all(MPI_MODE_NOCHECK, c->window);
   return c;
 }
 
 // Collective.
 void free_counter(Counter* c) {
-  rayform::cli::barrier_without_spinning();  // others may be busy with their last tile or render
+  rayform::distributed::barrier_without_spinning();  // others may be busy with their last tile or render
   MPI_Win_unlock_all(c->window);
   MPI_Win_free(&c->window);  // collective: every rank has taken its last number
   delete c;
@@ -119,7 +119,7 @@ __attribute__((visibility("default"))) void rayform_mpi_finish(void) {
   MPI_Finalized(&finalized);
   if (finalized) return;
   if (spare_counter) free_counter(std::exchange(spare_counter, nullptr));
-  rayform::cli::barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
+  rayform::distributed::barrier_without_spinning();  // MPI_Finalize waits for every rank, polling
   MPI_Finalize();
 }
 
@@ -128,14 +128,14 @@ __attribute__((visibility("default"))) void rayform_mpi_abort(void) { MPI_Abort(
 __attribute__((visibility("default"))) void rayform_mpi_allgather(const void* mine, void* all, uint64_t bytes_each) {
   MPI_Request request;  // the others may still be loading
   MPI_Iallgather(mine, int(bytes_each), MPI_BYTE, all, int(bytes_each), MPI_BYTE, MPI_COMM_WORLD, &request);
-  rayform::cli::wait_without_spinning(&request);
+  rayform::distributed::wait_without_spinning(&request);
 }
 
 __attribute__((visibility("default"))) long long rayform_mpi_sum(long long value) {
   long long sum = 0;
   MPI_Request request;  // the others may still be rendering
   MPI_Iallreduce(&value, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
-  rayform::cli::wait_without_spinning(&request);
+  rayform::distributed::wait_without_spinning(&request);
   return sum;
 }
 
@@ -152,7 +152,7 @@ __attribute__((visibility("default"))) void rayform_mpi_allgather_parts(void* co
       MPI_Ibcast(static_cast<char*>(parts[k]) + done, int(std::min(piece_bytes, sizes[k] - done)), MPI_BYTE, k,
                  MPI_COMM_WORLD, &requests.back());
     }
-  rayform::cli::wait_without_spinning(requests.data(), int(requests.size()));
+  rayform::distributed::wait_without_spinning(requests.data(), int(requests.size()));
 }
 
 __attribute__((visibility("default"))) void rayform_mpi_send(const void* data, uint64_t bytes, int to, int tag) {
@@ -160,7 +160,7 @@ __attribute__((visibility("default"))) void rayform_mpi_send(const void* data, u
     MPI_Request request;  // the receiver may still be rendering
     MPI_Isend(static_cast<const char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, to, tag,
               MPI_COMM_WORLD, &request);
-    rayform::cli::wait_without_spinning(&request);
+    rayform::distributed::wait_without_spinning(&request);
   }
 }
 
@@ -169,7 +169,7 @@ __attribute__((visibility("default"))) void rayform_mpi_receive(void* data, uint
     MPI_Request request;  // the sender may still be rendering
     MPI_Irecv(static_cast<char*>(data) + done, int(std::min(piece_bytes, bytes - done)), MPI_BYTE, from, tag,
               MPI_COMM_WORLD, &request);
-    rayform::cli::wait_without_spinning(&request);
+    rayform::distributed::wait_without_spinning(&request);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "rayform/scene/plugin_library.h"
+#include "rayform/base/plugin_library.h"
 
 #include <dlfcn.h>
 

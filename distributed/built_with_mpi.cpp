@@ -3,9 +3,9 @@
 // (cli/CMakeLists.txt: rayform with RAYFORM_WITH_MPI when RAYFORM_MPI is on;
 // tests/fuzz without, so the fuzz entries stay one process), while the render
 // path is compiled once, into the library rayform_cli_parts.
-#include "ranks.h"
+#include "rayform/distributed/ranks.h"
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 bool built_with_mpi() {
 #ifdef RAYFORM_WITH_MPI
@@ -15,4 +15,4 @@ bool built_with_mpi() {
 #endif
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -1,4 +1,4 @@
-#include "rayform/scene/limits.h"
+#include "rayform/base/limits.h"
 
 #include <cctype>
 #include <limits>

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 struct Ranks {
   int rank = 0, size = 1;
@@ -49,4 +49,4 @@ struct ReportedElsewhere : std::runtime_error {
 // status 1 (MPI_Abort; exit(1) when not distributed).
 [[noreturn]] void abort_ranks(const std::string& message);
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -6,7 +6,7 @@
 
 #include <cstdlib>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 inline bool launched_by_mpi_launcher() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
@@ -14,4 +14,4 @@ inline bool launched_by_mpi_launcher() {
   return false;
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

@@ -3,11 +3,11 @@
 // rayform run on its own never loads MPI.
 #pragma once
 
-#include "mpi_plugin_abi.h"
+#include "rayform/distributed/mpi_plugin_abi.h"
 
 #include <string>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 
 struct MpiPlugin {
   rayform_mpi_start_fn start = nullptr;
@@ -23,7 +23,7 @@ struct MpiPlugin {
   rayform_mpi_counter_destroy_fn counter_destroy = nullptr;
 };
 
-// Opens the plugin (scene/plugin_library.h; $RAYFORM_MPI_PLUGIN overrides
+// Opens the plugin (base/plugin_library.h; $RAYFORM_MPI_PLUGIN overrides
 // where) and checks its version: nullptr with the reason in *failure.
 const MpiPlugin* open_mpi_plugin(std::string* failure);
 
@@ -31,4 +31,4 @@ const MpiPlugin* open_mpi_plugin(std::string* failure);
 // the first call waits for it); nullptr in a process no MPI launcher started.
 const MpiPlugin* mpi();
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed

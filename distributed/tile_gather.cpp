@@ -5,17 +5,17 @@
 // pieces reuse one buffer on either side: no copy of a whole share, whose
 // first touch of fresh pages cost more than the transfer (an 8K frame with
 // every AOV in float is 1.46 GB).
-#include "tile_gather.h"
+#include "rayform/distributed/tile_gather.h"
 
-#include "mpi_plugin.h"
-#include "ranks.h"
+#include "rayform/distributed/mpi_plugin.h"
+#include "rayform/distributed/ranks.h"
 
 #include "rayform/render/tile_pixels.h"
 
 #include <cstdint>
 #include <span>
 
-namespace rayform::cli {
+namespace rayform::distributed {
 namespace {
 
 constexpr int tag_header = 1, tag_tiles = 2, tag_pixels = 3;
@@ -59,4 +59,4 @@ void gather_tiles(RenderResult& result, const TileGrid& grid, const std::vector<
   }
 }
 
-}  // namespace rayform::cli
+}  // namespace rayform::distributed
