@@ -51,8 +51,9 @@ bool is_course_command_line(const std::vector<std::string>& args) {
   return course_flags.count(a) > 0 || (a.size() > 2 && a[0] == '-' && a[1] != '-');
 }
 
-RenderJob parse_course_command_line(const std::vector<std::string>& v) {
-  RenderJob job;
+CourseCommand parse_course_command_line(const std::vector<std::string>& v) {
+  CourseCommand command;
+  RenderJob& job = command.job;
   bool has_input = false, has_output = false, has_size = false, has_bounces = false;
   Args a{v};
   while (a.i < v.size()) {
@@ -77,8 +78,8 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
     else if (f == "-albedo") job.albedo = a.take(f, "an image file");
     else if (f == "-dialect") {
       std::string d = a.take(f, "2012, 2019 or a5");
-      job.dialect = dialect_from_string(d);
-      if (!job.dialect) throw UsageError("-dialect expects 2012, 2019 or a5, got '" + d + "'");
+      job.load.dialect = dialect_from_string(d);
+      if (!job.load.dialect) throw UsageError("-dialect expects 2012, 2019 or a5, got '" + d + "'");
     } else if (f == "-bounces") {
       job.render.bounces = a.integer(f, "a number of bounces");
       has_bounces = true;
@@ -98,8 +99,8 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
       job.render.spp = a.integer(f, "a number of samples per pixel");
     } else if (f == "-threads") {
       job.render.threads = a.integer(f, "a number of threads");
-    } else if (f == "-quiet" || f == "--quiet") job.quiet = true;
-    else if (f == "-stats") job.stats = true;
+    } else if (f == "-quiet" || f == "--quiet") command.reporting.quiet = true;
+    else if (f == "-stats") command.reporting.stats = true;
     else if (f == "-generic") job.render.generic = true;
     else throw UsageError("unknown option '" + f + "'");
   }
@@ -109,7 +110,7 @@ RenderJob parse_course_command_line(const std::vector<std::string>& v) {
   job.default_bounces = !has_bounces;
   // The one check of the render parameters (render.h), under the course's flag names.
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError("-" + problem);
-  return job;
+  return command;
 }
 
 }  // namespace rayform::cli

@@ -9,23 +9,22 @@
 // sample image with the 5-tap Gaussian; either averages each pixel's 3x3 block.
 #pragma once
 
-#include "render_job.h"
+#include "run_job.h"
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace rayform::cli {
 
-// A command-line mistake: reported with a hint to --help, exit status 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // Whether the arguments use the course style (the first is one of its flags).
 bool is_course_command_line(const std::vector<std::string>& args);
 
+struct CourseCommand {
+  RenderJob job;
+  Reporting reporting;  // -quiet, -stats
+};
+
 // Throws UsageError.
-RenderJob parse_course_command_line(const std::vector<std::string>& args);
+CourseCommand parse_course_command_line(const std::vector<std::string>& args);
 
 }  // namespace rayform::cli

@@ -5,7 +5,7 @@
 #include "heap_reuse.h"
 #include "rayform/distributed/ranks.h"
 #include "read_flags.h"
-#include "render_job.h"
+#include "run_job.h"
 #include "rayform/base/error.h"
 #include "rayform/image/interrupt_cleanup.h"
 
@@ -60,7 +60,8 @@ int run(int argc, char** argv) {
                           "written");
   std::vector<std::string> args(argv + 1, argv + argc);
   if (is_course_command_line(args)) {
-    run_render_job(parse_course_command_line(args));
+    const CourseCommand course = parse_course_command_line(args);
+    run_job(course.job, course.reporting, true);
     return 0;
   }
 
@@ -98,14 +99,14 @@ int run(int argc, char** argv) {
 }  // namespace rayform::cli
 
 int main(int argc, char** argv) {
-  using rayform::cli::ranks;
   rayform::cli::keep_freed_heap_for_reuse();
   try {
     rayform::distributed::start_ranks();
     return rayform::cli::run(argc, argv);
-  } catch (const rayform::cli::UsageError& e) {
+  } catch (const rayform::UsageError& e) {
     // Every rank parses the same command line: one message is enough.
-    if (distributed::ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
+    if (rayform::distributed::ranks().root())
+      std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
     return 2;
   } catch (const rayform::distributed::ReportedElsewhere&) {
     return 1;

@@ -41,7 +41,6 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
     for (int frame = 0; frame < frames; ++frame) {
       RenderJob j = job;
       j.input = input;
-      j.spread_frame = false;
       auto expand = [&](std::string& path, const char* option) {
         if (path.empty()) return;
         path = expand_output_name(path, input, frame, option);
@@ -64,7 +63,7 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
   return jobs;
 }
 
-int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool stats) {
+int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, const Reporting& reporting) {
   using clock = std::chrono::steady_clock;
   const distributed::Ranks& r = distributed::ranks();
   const auto start = clock::now();
@@ -93,7 +92,7 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool st
           job.preloaded = last;
           job.mesh_cache = last_accels;
         }
-        run_render_job(job);
+        run_job(job, reporting, false);
         ++done;
       } catch (const std::exception& e) {
         // One line naming the input (the readers' messages start with it),
@@ -108,7 +107,7 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool st
   }  // the counter's window is freed together, once every rank has taken its last number
   const long long failed_total = distributed::sum_over_ranks(failed);
   const double wall_s = std::chrono::duration<double>(clock::now() - start).count();
-  if (stats) {
+  if (reporting.stats) {
     std::ostringstream line;
     line << "stats: rank " << r.rank << " of " << r.size << ": " << done + failed << " renders (" << failed
          << " failed), busy " << busy_s << " s of " << wall_s << " s\n";

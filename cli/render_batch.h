@@ -7,7 +7,7 @@
 // the others still run.
 #pragma once
 
-#include "render_job.h"
+#include "run_job.h"
 
 #include <string>
 #include <vector>
@@ -33,6 +33,6 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
 // succeeded on every rank, else 1 (rank 0 then says how many failed). With
 // `turntable`, a rank keeps the last file it read and renders the next
 // frame of the same file from it (a copy) instead of reading it again.
-int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, bool stats);
+int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, const Reporting& reporting);
 
 }  // namespace rayform::cli

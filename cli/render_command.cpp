@@ -4,7 +4,7 @@
 #include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "render_batch.h"
-#include "render_job.h"
+#include "run_job.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,6 +103,7 @@ vec3 parse_background(const std::string& s) {
 
 struct RenderArgs {
   RenderJob job;
+  Reporting reporting;
   std::vector<std::string> inputs;
   Turntable turntable;
   ReadFlags read;
@@ -217,17 +218,18 @@ void add_render_command(CLI::App& app) {
   render->add_flag("--transparent", job.transparent,
                    "Background as alpha 0 (surfaces 1, edges between) in the colour output: .png/.tga with straight "
                    "alpha, .exr/.tif premultiplied");
-  render->add_flag("--flat", job.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
-  render->add_option("--gltf-scene", job.gltf_scene, "glTF: index of the scene to render (default: the file's)");
+  render->add_flag("--flat", job.load.flat_normals, "OBJ: faceted normals where the file has none (default smooth)");
+  render->add_option("--gltf-scene", job.load.gltf_scene, "glTF: index of the scene to render (default: the file's)");
   add_read_flags(*render, a->read);
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
-  render->add_flag("--stats", job.stats, "Print load/prepare/render/write times and accelerator memory on stderr");
+  render->add_flag("--stats", a->reporting.stats,
+                   "Print load/prepare/render/write times and accelerator memory on stderr");
   render->callback([a, camera, orbit, fov, background, bounces, frames] {
     a->job.default_size = a->size.empty();
     a->job.default_bounces = bounces->count() == 0;
     if (!a->job.default_size) parse_size(a->size, &a->job.render.width, &a->job.render.height);
     if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
-    a->job.dialect = dialect_from_string(a->dialect);
+    a->job.load.dialect = dialect_from_string(a->dialect);
     a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
     a->job.render.sampler = a->sampler == "random" ? PixelSampler::random : PixelSampler::stratified;
     a->job.color = a->color == "raw"    ? ColorEncoding::raw
@@ -245,34 +247,30 @@ void add_render_command(CLI::App& app) {
     if ((a->job.orbit || a->job.frame) && camera->count() > 0)
       throw UsageError(std::string(a->job.orbit ? "--orbit" : "--frame") +
                        " replaces the file's cameras: it cannot be combined with --camera");
-    if (!a->look_from.empty()) a->job.look_from = parse_vec3(a->look_from, "--look-from");
-    if (!a->look_at.empty()) a->job.look_at = parse_vec3(a->look_at, "--look-at");
-    if (!a->up.empty()) a->job.up = parse_vec3(a->up, "--up");
+    if (!a->look_from.empty()) a->job.camera_adjust.look_from = parse_vec3(a->look_from, "--look-from");
+    if (!a->look_at.empty()) a->job.camera_adjust.look_at = parse_vec3(a->look_at, "--look-at");
+    if (!a->up.empty()) a->job.camera_adjust.up = parse_vec3(a->up, "--up");
     if (background->count() > 0) a->job.background = parse_background(a->background);
     if (fov->count() > 0) {
       if (!(a->fov > 0.f && a->fov < 180.f))
         throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
-      a->job.fov = a->fov;
+      a->job.camera_adjust.fov_deg = a->fov;
     }
-    LoadOptions read;
-    apply_read_flags(a->read, read);
-    a->job.limits = read.limits;
-    a->job.access = read.access;
-    a->job.quiet = quiet_requested(a->read);
+    apply_read_flags(a->read, a->job.load);
+    a->reporting.quiet = quiet_requested(a->read);
     // The one check of the render parameters (render.h), under this command's flag names.
     if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
     if (a->inputs.size() > 1 || a->turntable.frames > 1) {
       // A batch: each render on one rank (all in this process without mpirun).
       const std::vector<RenderJob> jobs = batch_jobs(a->job, a->inputs, a->turntable);
-      if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->job.stats); status != 0)
+      if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->reporting); status != 0)
         throw distributed::ReportedElsewhere("renders failed");
       return;
     }
     // One picture (over every rank under mpirun); a template names it as a batch would.
     a->job.input = a->inputs[0];
     a->job = batch_jobs(a->job, a->inputs, a->turntable)[0];
-    a->job.spread_frame = true;
-    run_render_job(a->job);
+    run_job(a->job, a->reporting, true);
   });
 }
 

@@ -1,11 +1,12 @@
 # Install rules (RAYFORM_INSTALL, on by default when rayform is the top-level
 # project). The installed layout:
 #   <prefix>/bin/rayform                           the command-line program
-#   <prefix>/lib/librayform_core.a, librayform_importers.a
+#   <prefix>/lib/librayform_core.a, librayform_importers.a, librayform_pipeline.a
 #   <prefix>/lib/rayform/librayform_oiio.so        the OpenImageIO plugin (dlopen'ed)
 #   <prefix>/lib/rayform/librayform_mpi.so         the MPI plugin (dlopen'ed under mpirun; with RAYFORM_MPI)
 #   <prefix>/include/rayform/<folder>/*.h          src/<folder>/*.h
 #   <prefix>/include/rayform/importers/...         importers/**/*.h, less the readers' internals
+#   <prefix>/include/rayform/pipeline/*.h          pipeline/*.h
 #   <prefix>/lib/cmake/rayform/                    rayformConfig.cmake, rayformConfigVersion.cmake,
 #                                                  rayformTargets*.cmake, Findstb.cmake
 #   <prefix>/lib/pkgconfig/rayform.pc
@@ -15,7 +16,7 @@ include(CMakePackageConfigHelpers)
 set(RAYFORM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/rayform" CACHE STRING
     "Where rayformConfig.cmake is installed, relative to the install prefix")
 
-install(TARGETS rayform_core rayform_importers EXPORT rayformTargets
+install(TARGETS rayform_core rayform_importers rayform_pipeline EXPORT rayformTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -52,8 +53,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDE
         FILES_MATCHING PATTERN "*.h" ${_exclude})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/importers/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform/importers
         FILES_MATCHING PATTERN "*.h" ${_exclude})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/pipeline/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rayform/pipeline
+        FILES_MATCHING PATTERN "*.h")
 
-# The CMake package: rayform::core and rayform::importers.
+# The CMake package: rayform::core, rayform::importers and rayform::pipeline.
 install(EXPORT rayformTargets NAMESPACE rayform:: DESTINATION ${RAYFORM_INSTALL_CMAKEDIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/rayformConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/rayformConfig.cmake

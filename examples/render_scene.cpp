@@ -11,7 +11,7 @@
 // course scenes, unless WIDTH and HEIGHT are given. write_color_image picks
 // the encoding from the scene and the file: sRGB in 8-bit files (png, jpg,
 // ...), linear in float files (exr, hdr), course scenes as the course writes.
-#include <rayform/importers/scene_ready.h>
+#include <rayform/pipeline/scene_ready.h>
 #include <rayform/render/color_output.h>
 #include <rayform/render/prepared_scene.h>
 #include <rayform/render/render.h>

@@ -1,4 +1,4 @@
-// The library's one exception type. Messages name the file and, where it
+// The library's exception types. Messages name the file and, where it
 // helps, line and column: "scene.txt:12:5: expected a number, found 'x'".
 #pragma once
 
@@ -8,6 +8,12 @@
 namespace rayform {
 
 struct Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A mistake in what the caller asked for (an option, not a file): a command
+// line reports it with a hint to its usage and exit status 2.
+struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

@@ -1,12 +1,12 @@
 #include "rayform/image/image.h"
 
 #include "rayform/image/header_check.h"
+#include "rayform/image/image_file.h"
 #include "rayform/image/interrupt_cleanup.h"
 #include "rayform/image/oiio_plugin.h"
 #include "rayform/image/replace_file.h"
 #include "rayform/image/stb_writer.h"
 #include "rayform/base/error.h"
-#include "rayform/base/file_extension.h"
 
 #include <cstring>
 #include <filesystem>
@@ -86,9 +86,9 @@ Image read_image(const std::string& path, const DecodeOptions& options) {
 }
 
 bool is_writable_image_path(const std::string& path) {
-  std::string ext = lower_extension(path);
-  if (ext.empty()) return false;
-  return stb_writes(ext) || oiio_can_write(path);
+  const ImageFile file = image_file(path);
+  if (file.extension.empty()) return false;
+  return file.stb || oiio_can_write(path);
 }
 
 namespace {
@@ -120,39 +120,35 @@ std::string write_temporary(const std::string& path, int width, int height, int 
 }
 }  // namespace
 
+std::string write_image_temporary(const ImageFile& file, const Image& image) {
+  const std::string& path = file.path;
+  if (!file.stb && (file.extension.empty() || !oiio_can_write(path)))
+    throw Error(path + ": cannot write images of this type (unknown extension '" + file.extension + "')");
+  return write_temporary(
+      path, image.width, image.height, image.channels, [&](const std::string& tmp, std::string* error) {
+        return file.stb ? stb_write(tmp, file.extension, image, error) : oiio_write(path, tmp, image, error);
+      });
+}
+
 std::string write_image_temporary(const std::string& path, const Image& image) {
-  std::string ext = lower_extension(path);
-  bool use_stb = stb_writes(ext);
-  if (!use_stb && (ext.empty() || !oiio_can_write(path)))
-    throw Error(path + ": cannot write images of this type (unknown extension '" + ext + "')");
-  return write_temporary(path, image.width, image.height, image.channels,
-                         [&](const std::string& tmp, std::string* error) {
-                           return use_stb ? stb_write(tmp, ext, image, error) : oiio_write(path, tmp, image, error);
-                         });
+  return write_image_temporary(image_file(path), image);
 }
 
-bool is_alpha_image_path(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  return ext == ".png" || ext == ".tga" || ext == ".exr" || ext == ".tif" || ext == ".tiff";
-}
+bool is_alpha_image_path(const std::string& path) { return image_file(path).alpha; }
 
-bool is_8bit_image_path(const std::string& path) { return stb_writes_8bit(lower_extension(path)); }
+bool is_8bit_image_path(const std::string& path) { return image_file(path).bits8; }
 
-bool is_float_image_path(const std::string& path) {
-  // The extensions of OpenImageIO's float formats in oiio_plugin_module.cpp
-  // (openexr, hdr, tiff, fits, pfm); tests/unit/color_output_test.cpp reads
-  // back values above 1 from .exr, .tif and .hdr (rayform reads no FITS, and
-  // Debian's OpenImageIO writes no PFM).
-  const std::string ext = lower_extension(path);
-  return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".fits" || ext == ".pfm";
+bool is_float_image_path(const std::string& path) { return image_file(path).floats; }
+
+std::string write_image8_temporary(const ImageFile& file, const Image8& image) {
+  if (!file.bits8) throw Error(file.path + ": not an 8-bit image type (bmp, png, tga, jpg)");
+  return write_temporary(
+      file.path, image.width, image.height, image.channels,
+      [&](const std::string& tmp, std::string* error) { return stb_write8(tmp, file.extension, image, error); });
 }
 
 std::string write_image8_temporary(const std::string& path, const Image8& image) {
-  std::string ext = lower_extension(path);
-  if (!stb_writes_8bit(ext)) throw Error(path + ": not an 8-bit image type (bmp, png, tga, jpg)");
-  return write_temporary(
-      path, image.width, image.height, image.channels,
-      [&](const std::string& tmp, std::string* error) { return stb_write8(tmp, ext, image, error); });
+  return write_image8_temporary(image_file(path), image);
 }
 
 void commit_temporary(const std::string& temporary, const std::string& path) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "rayform/image/image_decode.h"
+#include "rayform/image/image_file.h"
 
 #include <string>
 #include <vector>
@@ -50,10 +51,13 @@ void write_image(const std::string& path, const Image& image);
 // together or not at all: write each to its temporary file first (throws,
 // leaving nothing behind), then rename them all. discard_temporary removes a
 // temporary that will not be committed.
+// The forms that take an ImageFile (image_file.h) use its parse of the path.
 std::string write_image_temporary(const std::string& path, const Image& image);
-// The same for 8-bit pixels, stored as they are, to a path for which
-// is_8bit_image_path holds (bmp, png, tga, jpg).
+std::string write_image_temporary(const ImageFile& file, const Image& image);
+// The same for 8-bit pixels, stored as they are, to a file whose samples are
+// 8-bit (ImageFile::bits8: bmp, png, tga, jpg).
 std::string write_image8_temporary(const std::string& path, const Image8& image);
+std::string write_image8_temporary(const ImageFile& file, const Image8& image);
 bool is_8bit_image_path(const std::string& path);
 // True when files with this path's extension hold float samples, unclamped:
 // exr, hdr, tif/tiff, fits, pfm (the formats OpenImageIO's writer is asked

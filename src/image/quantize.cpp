@@ -3,6 +3,7 @@
 #include "rayform/image/color.h"
 
 #include <bit>
+#include <cmath>
 #include <limits>
 
 namespace rayform {
@@ -48,6 +49,14 @@ SrgbQuantizer make_srgb_quantizer() {
 const SrgbQuantizer& srgb_quantizer() {
   static const SrgbQuantizer q = make_srgb_quantizer();
   return q;
+}
+
+float linear_from_display(float v) {
+  const uint8_t wanted = quantize_unit(v);
+  float linear = srgb_to_linear(v);
+  for (int step = 0; step < 64 && quantize_srgb_direct(linear) != wanted; ++step)
+    linear = std::nextafter(linear, quantize_srgb_direct(linear) < wanted ? 2.f : -1.f);
+  return linear;
 }
 
 }  // namespace rayform

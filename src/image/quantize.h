@@ -47,4 +47,10 @@ const SrgbQuantizer& srgb_quantizer();
 // The direct formula the quantizer reproduces (for tests and one-off values).
 uint8_t quantize_srgb_direct(float linear);
 
+// The linear value that an sRGB-encoded 8-bit output shows as the display
+// value v (0..1, as a colour picker gives it) shows unencoded: srgb_to_linear(v),
+// moved by the few float steps needed for quantize_srgb_direct of it to be
+// quantize_unit(v) (the round trip in float can land one step below).
+float linear_from_display(float v);
+
 }  // namespace rayform

@@ -18,16 +18,22 @@ bool shown_through_srgb(const ColorOutput& output) {
   return output.scene == SceneColors::linear;
 }
 
-bool writes_srgb(const ColorOutput& output, const std::string& path) {
-  return shown_through_srgb(output) && (output.encoding == ColorEncoding::srgb || !is_float_image_path(path));
+bool writes_srgb(const ColorOutput& output, const ImageFile& file) {
+  return shown_through_srgb(output) && (output.encoding == ColorEncoding::srgb || !file.floats);
+}
+
+bool writes_srgb(const ColorOutput& output, const std::string& path) { return writes_srgb(output, image_file(path)); }
+
+ColorFormat render_color_format(const ColorOutput& output, const ImageFile& file, const ImageFile* albedo) {
+  if (!file.bits8) return ColorFormat::linear_float;
+  const bool srgb = writes_srgb(output, file);
+  if (albedo && (!albedo->bits8 || writes_srgb(output, *albedo) != srgb)) return ColorFormat::linear_float;
+  return srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
 }
 
 ColorFormat render_color_format(const ColorOutput& output, const std::string& path, const std::string& albedo_path) {
-  if (!is_8bit_image_path(path)) return ColorFormat::linear_float;
-  const bool srgb = writes_srgb(output, path);
-  if (!albedo_path.empty() && (!is_8bit_image_path(albedo_path) || writes_srgb(output, albedo_path) != srgb))
-    return ColorFormat::linear_float;
-  return srgb ? ColorFormat::srgb8 : ColorFormat::unit8;
+  const ImageFile albedo = image_file(albedo_path);
+  return render_color_format(output, image_file(path), albedo_path.empty() ? nullptr : &albedo);
 }
 
 void encode_srgb_in_place(Image& image) {
@@ -40,30 +46,36 @@ void encode_srgb_in_place(Image& image) {
     }
 }
 
-std::string write_color_temporary(const std::string& path, RenderResult& result, ColorPlane plane,
+std::string write_color_temporary(const ImageFile& file, RenderResult& result, ColorPlane plane,
                                   const ColorOutput& output) {
+  const std::string& path = file.path;
   const char* what = plane == ColorPlane::color ? "colour" : "albedo";
-  const bool srgb = writes_srgb(output, path);
+  const bool srgb = writes_srgb(output, file);
   const bool with_alpha = plane == ColorPlane::color && !result.coverage.empty();
   if (result.color_format != ColorFormat::linear_float) {
     const Image8& bytes = plane == ColorPlane::color ? result.color8 : result.albedo8;
     if (bytes.pixels.empty()) throw Error(path + ": the render has no " + what + " to write");
-    if (!is_8bit_image_path(path) || srgb != (result.color_format == ColorFormat::srgb8))
+    if (!file.bits8 || srgb != (result.color_format == ColorFormat::srgb8))
       throw Error(path + ": the render's " + what + " holds 8-bit " +
                   (result.color_format == ColorFormat::srgb8 ? "sRGB" : "raw") +
                   " values, not what this file needs (render with render_color_format)");
-    if (with_alpha) return write_image8_temporary(path, color8_with_alpha(result));
-    return write_image8_temporary(path, bytes);
+    if (with_alpha) return write_image8_temporary(file, color8_with_alpha(result));
+    return write_image8_temporary(file, bytes);
   }
   Image& image = plane == ColorPlane::color ? result.color : result.albedo;
   if (image.empty()) throw Error(path + ": the render has no " + what + " to write");
   if (with_alpha) {
     Image rgba = color_with_alpha(result);
     if (srgb) encode_srgb_in_place(rgba);
-    return write_image_temporary(path, rgba);
+    return write_image_temporary(file, rgba);
   }
   if (srgb) encode_srgb_in_place(image);
-  return write_image_temporary(path, image);
+  return write_image_temporary(file, image);
+}
+
+std::string write_color_temporary(const std::string& path, RenderResult& result, ColorPlane plane,
+                                  const ColorOutput& output) {
+  return write_color_temporary(image_file(path), result, plane, output);
 }
 
 void write_color_image(const std::string& path, RenderResult& result, const ColorOutput& output) {

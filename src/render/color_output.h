@@ -9,6 +9,7 @@
 #pragma once
 
 #include "rayform/image/image.h"
+#include "rayform/image/image_file.h"
 #include "rayform/render/render.h"
 
 #include <cstdint>
@@ -38,14 +39,20 @@ struct ColorOutput {
 // background colour) are converted to linear.
 bool shown_through_srgb(const ColorOutput& output);
 
-// Whether the values written to `path` are sRGB-encoded: shown through sRGB
+// Each function below that takes a path has a form that takes the path
+// parsed once (image/image_file.h), for a caller that decides many things of
+// one output.
+
+// Whether the values written to `file` are sRGB-encoded: shown through sRGB
 // and, unless the encoding is forced, an 8-bit file.
+bool writes_srgb(const ColorOutput& output, const ImageFile& file);
 bool writes_srgb(const ColorOutput& output, const std::string& path);
 
-// The RenderOptions::color_format for writing colour to `path` and, unless
-// empty, albedo to `albedo_path`: 8-bit values straight from the render loop
+// The RenderOptions::color_format for writing colour to `file` and, when
+// given, albedo to `albedo`: 8-bit values straight from the render loop
 // (unit8 or srgb8) when both are 8-bit files with the same encoding, else
 // linear floats, encoded when written.
+ColorFormat render_color_format(const ColorOutput& output, const ImageFile& file, const ImageFile* albedo);
 ColorFormat render_color_format(const ColorOutput& output, const std::string& path,
                                 const std::string& albedo_path = {});
 
@@ -56,7 +63,7 @@ void encode_srgb_in_place(Image& image);
 
 enum class ColorPlane : uint8_t { color, albedo };
 
-// Writes `plane` of `result` to a temporary file beside `path` in the
+// Writes `plane` of `result` to a temporary file beside the file in the
 // encoding writes_srgb chooses, and returns the temporary's path (commit it
 // with commit_temporary, or several with OutputFiles::add_written). Colour
 // gets the coverage as a fourth (alpha) channel, linear, when the render has
@@ -65,6 +72,8 @@ enum class ColorPlane : uint8_t { color, albedo };
 // Throws rayform::Error when the plane is missing or holds 8-bit values of
 // another encoding, or a float file is asked for from 8-bit values (render
 // with render_color_format), or the file cannot be written.
+std::string write_color_temporary(const ImageFile& file, RenderResult& result, ColorPlane plane,
+                                  const ColorOutput& output);
 std::string write_color_temporary(const std::string& path, RenderResult& result, ColorPlane plane,
                                   const ColorOutput& output);
 

@@ -264,8 +264,8 @@ FuzzOutcome fuzz_course_args(const uint8_t* data, size_t size, const FuzzLimits&
   FuzzOutcome o;
   try {
     (void)cli::is_course_command_line(args);
-    const cli::RenderJob job = cli::parse_course_command_line(args);
-    cli::check_render_job_memory(job);  // what `rayform` checks before it reads the scene
+    const cli::CourseCommand command = cli::parse_course_command_line(args);
+    check_render_job_memory(command.job);  // what `rayform` checks before it reads the scene
     o.ok = true;
   } catch (const cli::UsageError& e) {
     o.message = e.what();

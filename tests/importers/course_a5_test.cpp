@@ -6,7 +6,7 @@
 #include "rayform/image/image.h"
 #include "rayform/importers/course_txt/course_reader.h"
 #include "rayform/importers/scene_io.h"
-#include "rayform/importers/scene_ready.h"
+#include "rayform/pipeline/scene_ready.h"
 #include "rayform/importers/scene_writer.h"
 #include "rayform/math/perlin_noise.h"
 #include "rayform/render/prepared_scene.h"

@@ -1,9 +1,9 @@
-// load_ready_scene (importers/scene_ready.h): an asset without camera or light
+// load_ready_scene (pipeline/scene_ready.h): an asset without camera or light
 // gets the default camera and the light rig, said in notes (nothing printed);
 // one with both is left alone; a course scene is left as the course defines
 // it; the size and colour meaning follow the format; a caller's camera
 // (orbit, adjustments) is in place before the rig, which follows it.
-#include "rayform/importers/scene_ready.h"
+#include "rayform/pipeline/scene_ready.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/base/error.h"
 #include "rayform/scene/scene_stats.h"

@@ -131,7 +131,7 @@ elseif(MODE STREQUAL "install")
   # Nothing may refer to the build tree any more (the plugin is found in the
   # prefix, where the CLI and the compiled-in install folder point).
   file(REMOVE_RECURSE "${shared_build}")
-  foreach(f bin/rayform lib/rayform/librayform_oiio.so lib/librayform_core.a lib/librayform_importers.a
+  foreach(f bin/rayform lib/rayform/librayform_oiio.so lib/librayform_core.a lib/librayform_importers.a lib/librayform_pipeline.a
             lib/cmake/rayform/rayformConfig.cmake lib/cmake/rayform/rayformConfigVersion.cmake
             lib/cmake/rayform/rayformTargets.cmake lib/pkgconfig/rayform.pc include/rayform/scene/scene.h
             include/rayform/importers/scene_io.h)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `rayform render` without --size: 512x512 for an asset (OBJ, glTF), the
 # course's 200x200 for a course scene (default_render_options,
-# importers/scene_ready.h); --size still wins. Before, every format got
+# pipeline/scene_ready.h); --size still wins. Before, every format got
 # 200x200. Needs no third-party data.
 source "$(dirname "$0")/lib.sh"
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool not found (apt-get install openimageio-tools)"; exit 1; }

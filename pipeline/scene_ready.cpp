@@ -1,4 +1,4 @@
-#include "rayform/importers/scene_ready.h"
+#include "rayform/pipeline/scene_ready.h"
 
 #include "rayform/scene/scene_stats.h"
 
