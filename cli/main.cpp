@@ -98,14 +98,13 @@ int run(int argc, char** argv) {
 }  // namespace rayform::cli
 
 int main(int argc, char** argv) {
-  using rayform::cli::ranks;
   rayform::cli::keep_freed_heap_for_reuse();
   try {
     rayform::distributed::start_ranks();
     return rayform::cli::run(argc, argv);
   } catch (const rayform::cli::UsageError& e) {
     // Every rank parses the same command line: one message is enough.
-    if (distributed::ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
+    if (rayform::distributed::ranks().root()) std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
     return 2;
   } catch (const rayform::distributed::ReportedElsewhere&) {
     return 1;
