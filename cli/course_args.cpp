@@ -107,6 +107,7 @@ CourseCommand parse_course_command_line(const std::vector<std::string>& v) {
   if (!has_input) throw UsageError("missing -input SCENE");
   if (!has_output) throw UsageError("missing -output IMAGE");
   if (!has_size) throw UsageError("missing -size WIDTH HEIGHT");
+  job.default_size = false;  // -size is required
   job.default_bounces = !has_bounces;
   // The one check of the render parameters (render.h), under the course's flag names.
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw UsageError("-" + problem);

@@ -111,7 +111,63 @@ struct RenderArgs {
   std::string depth, dialect, filter = "box", sampler = "stratified", color = "auto";
   std::string orbit, look_from, look_at, up, background;
   float fov = 0.f;
+  // Options whose presence matters (given, even with an empty value).
+  CLI::Option *camera = nullptr, *orbit_option = nullptr, *fov_option = nullptr, *background_option = nullptr,
+              *bounces = nullptr, *frames = nullptr;
 };
+
+// Once the flags are parsed: the job completed from them, checked, and run
+// (one picture over every rank under mpirun, or a batch).
+void run_render_args(RenderArgs& a) {
+  const CLI::Option *camera = a.camera, *orbit = a.orbit_option, *fov = a.fov_option, *background = a.background_option,
+                    *bounces = a.bounces, *frames = a.frames;
+  a.job.default_size = a.size.empty();
+  a.job.default_bounces = bounces->count() == 0;
+  if (!a.job.default_size) parse_size(a.size, &a.job.render.width, &a.job.render.height);
+  if (!a.depth.empty()) a.job.depth = parse_depth(a.depth);
+  a.job.load.dialect = dialect_from_string(a.dialect);
+  a.job.render.filter = a.filter == "tent" ? PixelFilter::tent : PixelFilter::box;
+  a.job.render.sampler = a.sampler == "random" ? PixelSampler::random : PixelSampler::stratified;
+  a.job.color = a.color == "raw"    ? ColorEncoding::raw
+                : a.color == "srgb" ? ColorEncoding::srgb
+                                    : ColorEncoding::automatic;
+  if (orbit->count() > 0) {  // given, even as ''
+    if (!a.look_from.empty() || !a.look_at.empty())
+      throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");
+    a.job.orbit = parse_orbit(a.orbit);
+  }
+  if (frames->count() > 0 && (camera->count() > 0 || !a.look_from.empty() || !a.look_at.empty()))
+    throw UsageError(
+        "--frames turns the --orbit camera: it cannot be combined with --camera, --look-from or "
+        "--look-at");
+  if ((a.job.orbit || a.job.frame) && camera->count() > 0)
+    throw UsageError(std::string(a.job.orbit ? "--orbit" : "--frame") +
+                     " replaces the file's cameras: it cannot be combined with --camera");
+  if (!a.look_from.empty()) a.job.camera_adjust.look_from = parse_vec3(a.look_from, "--look-from");
+  if (!a.look_at.empty()) a.job.camera_adjust.look_at = parse_vec3(a.look_at, "--look-at");
+  if (!a.up.empty()) a.job.camera_adjust.up = parse_vec3(a.up, "--up");
+  if (background->count() > 0) a.job.background = parse_background(a.background);
+  if (fov->count() > 0) {
+    if (!(a.fov > 0.f && a.fov < 180.f))
+      throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
+    a.job.camera_adjust.fov_deg = a.fov;
+  }
+  apply_read_flags(a.read, a.job.load);
+  a.reporting.quiet = quiet_requested(a.read);
+  // The one check of the render parameters (render.h), under this command's flag names.
+  if (std::string problem = render_options_problem(a.job.render); !problem.empty()) throw UsageError("--" + problem);
+  if (a.inputs.size() > 1 || a.turntable.frames > 1) {
+    // A batch: each render on one rank (all in this process without mpirun).
+    const std::vector<RenderJob> jobs = batch_jobs(a.job, a.inputs, a.turntable);
+    if (int status = run_render_batch(jobs, a.turntable.frames > 1, a.reporting); status != 0)
+      throw distributed::ReportedElsewhere("renders failed");
+    return;
+  }
+  // One picture (over every rank under mpirun); a template names it as a batch would.
+  a.job.input = a.inputs[0];
+  a.job = batch_jobs(a.job, a.inputs, a.turntable)[0];
+  run_job(a.job, a.reporting, true);
+}
 
 }  // namespace
 
@@ -224,54 +280,13 @@ void add_render_command(CLI::App& app) {
   render->add_flag("--generic", job.render.generic, "Force the general render path (no feature specialisation)");
   render->add_flag("--stats", a->reporting.stats,
                    "Print load/prepare/render/write times and accelerator memory on stderr");
-  render->callback([a, camera, orbit, fov, background, bounces, frames] {
-    a->job.default_size = a->size.empty();
-    a->job.default_bounces = bounces->count() == 0;
-    if (!a->job.default_size) parse_size(a->size, &a->job.render.width, &a->job.render.height);
-    if (!a->depth.empty()) a->job.depth = parse_depth(a->depth);
-    a->job.load.dialect = dialect_from_string(a->dialect);
-    a->job.render.filter = a->filter == "tent" ? PixelFilter::tent : PixelFilter::box;
-    a->job.render.sampler = a->sampler == "random" ? PixelSampler::random : PixelSampler::stratified;
-    a->job.color = a->color == "raw"    ? ColorEncoding::raw
-                   : a->color == "srgb" ? ColorEncoding::srgb
-                                        : ColorEncoding::automatic;
-    if (orbit->count() > 0) {  // given, even as ''
-      if (!a->look_from.empty() || !a->look_at.empty())
-        throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");
-      a->job.orbit = parse_orbit(a->orbit);
-    }
-    if (frames->count() > 0 && (camera->count() > 0 || !a->look_from.empty() || !a->look_at.empty()))
-      throw UsageError(
-          "--frames turns the --orbit camera: it cannot be combined with --camera, --look-from or "
-          "--look-at");
-    if ((a->job.orbit || a->job.frame) && camera->count() > 0)
-      throw UsageError(std::string(a->job.orbit ? "--orbit" : "--frame") +
-                       " replaces the file's cameras: it cannot be combined with --camera");
-    if (!a->look_from.empty()) a->job.camera_adjust.look_from = parse_vec3(a->look_from, "--look-from");
-    if (!a->look_at.empty()) a->job.camera_adjust.look_at = parse_vec3(a->look_at, "--look-at");
-    if (!a->up.empty()) a->job.camera_adjust.up = parse_vec3(a->up, "--up");
-    if (background->count() > 0) a->job.background = parse_background(a->background);
-    if (fov->count() > 0) {
-      if (!(a->fov > 0.f && a->fov < 180.f))
-        throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
-      a->job.camera_adjust.fov_deg = a->fov;
-    }
-    apply_read_flags(a->read, a->job.load);
-    a->reporting.quiet = quiet_requested(a->read);
-    // The one check of the render parameters (render.h), under this command's flag names.
-    if (std::string problem = render_options_problem(a->job.render); !problem.empty()) throw UsageError("--" + problem);
-    if (a->inputs.size() > 1 || a->turntable.frames > 1) {
-      // A batch: each render on one rank (all in this process without mpirun).
-      const std::vector<RenderJob> jobs = batch_jobs(a->job, a->inputs, a->turntable);
-      if (int status = run_render_batch(jobs, a->turntable.frames > 1, a->reporting); status != 0)
-        throw distributed::ReportedElsewhere("renders failed");
-      return;
-    }
-    // One picture (over every rank under mpirun); a template names it as a batch would.
-    a->job.input = a->inputs[0];
-    a->job = batch_jobs(a->job, a->inputs, a->turntable)[0];
-    run_job(a->job, a->reporting, true);
-  });
+  a->camera = camera;
+  a->orbit_option = orbit;
+  a->fov_option = fov;
+  a->background_option = background;
+  a->bounces = bounces;
+  a->frames = frames;
+  render->callback([a] { run_render_args(*a); });
 }
 
 }  // namespace rayform::cli

@@ -5,7 +5,7 @@
 #   stb::stb         the shared libstb.so, with the include folder that holds
 #                    stb_image.h (<prefix>/include/stb)
 #   stb::stb_static  libstb.a, when it exists (the rayform program and the fuzz
-#                    binaries link it: rayform_stb_first, cli/CMakeLists.txt)
+#                    binaries link it: rayform_stb_first, pipeline/CMakeLists.txt)
 # Variables: stb_FOUND, stb_INCLUDE_DIR, stb_LIBRARY, stb_STATIC_LIBRARY.
 find_path(stb_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
 find_library(stb_LIBRARY NAMES ${CMAKE_SHARED_LIBRARY_PREFIX}stb${CMAKE_SHARED_LIBRARY_SUFFIX} stb)

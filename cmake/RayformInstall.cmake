@@ -16,7 +16,7 @@ include(CMakePackageConfigHelpers)
 set(RAYFORM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/rayform" CACHE STRING
     "Where rayformConfig.cmake is installed, relative to the install prefix")
 
-install(TARGETS rayform_core rayform_importers rayform_pipeline EXPORT rayformTargets
+install(TARGETS rayform_core rayform_importers rayform_pipeline rayform_stb_first EXPORT rayformTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -8,7 +8,6 @@
 //   RenderJob job;
 //   job.input = "duck.glb";
 //   job.output = "duck.png";
-//   job.default_size = true;
 //   JobReport report = run_render_job(job);
 #pragma once
 
@@ -50,11 +49,12 @@ struct RenderJob {
   // default_bounces. The per-pixel outputs and the colour format follow the
   // outputs above (job_render_options).
   RenderOptions render;
-  // The scene format's default size (default_render_options), not render's.
-  bool default_size = false;
-  // The default of the scene's format and dialect, known once it is read
-  // (default_render_options: 4 for the course's a5, else 0).
-  bool default_bounces = false;
+  // The scene format's default size (default_render_options: 512x512 for
+  // assets, the course's 200x200 for course scenes), not render's.
+  bool default_size = true;
+  // The default bounces of the scene's format and dialect, known once it is
+  // read (default_render_options: 4 for the course's a5, else 0), not render's.
+  bool default_bounces = true;
   ColorEncoding color = ColorEncoding::automatic;  // the output's transfer function (color_output.h)
   // The camera: `orbit` replaces the file's cameras with one orbiting the
   // scene's bounds, `frame` with the default framing camera (Orbit{});

@@ -267,7 +267,7 @@ FuzzOutcome fuzz_course_args(const uint8_t* data, size_t size, const FuzzLimits&
     const cli::CourseCommand command = cli::parse_course_command_line(args);
     check_render_job_memory(command.job);  // what `rayform` checks before it reads the scene
     o.ok = true;
-  } catch (const cli::UsageError& e) {
+  } catch (const UsageError& e) {
     o.message = e.what();
   } catch (const Error& e) {
     o.message = e.what();
