@@ -16,11 +16,12 @@ namespace {
 // `path` parsed, or UsageError when it names no file rayform writes.
 ImageFile checked_output(const std::string& path, const char* what) {
   if (path.empty()) throw UsageError(std::string(what) + ": no file name given");
-  if (!is_writable_image_path(path))
+  ImageFile file = image_file(path);
+  if (!is_writable(file))
     throw UsageError(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
                      "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
   check_output_folder(path, what);
-  return image_file(path);
+  return file;
 }
 
 }  // namespace

@@ -85,10 +85,11 @@ Image read_image(const std::string& path, const DecodeOptions& options) {
   return to_float_image(read_image_file(path, options));
 }
 
-bool is_writable_image_path(const std::string& path) {
-  const ImageFile file = image_file(path);
+bool is_writable_image_path(const std::string& path) { return is_writable(image_file(path)); }
+
+bool is_writable(const ImageFile& file) {
   if (file.extension.empty()) return false;
-  return file.stb || oiio_can_write(path);
+  return file.stb || oiio_can_write(file.path);
 }
 
 namespace {

@@ -70,7 +70,9 @@ void discard_temporary(const std::string& temporary);
 // channel: png and tga (straight alpha), exr and tif/tiff (premultiplied).
 bool is_alpha_image_path(const std::string& path);
 
-// True when OpenImageIO can write files with this path's extension.
+// True when rayform writes files with this path's extension: stb, or
+// OpenImageIO (asked through its plugin, opened for it).
 bool is_writable_image_path(const std::string& path);
+bool is_writable(const ImageFile& file);
 
 }  // namespace rayform
