@@ -64,10 +64,10 @@ float normal_deviation(const Mesh& m, const std::vector<vec3>& course) {
   return float(worst);
 }
 
-class CourseBuilder {
+class CourseWriter {
  public:
-  CourseBuilder(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
-                std::vector<std::string>* messages)
+  CourseWriter(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
+               std::vector<std::string>* messages)
       : s_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
     protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
@@ -689,7 +689,7 @@ std::string course_side_folder_problem(const std::string& path, const std::strin
 SaveResult write_course_scene(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                               std::vector<std::string>* messages) {
   require_scene_root(scene, path);
-  return CourseBuilder(scene, path, options, messages).write();
+  return CourseWriter(scene, path, options, messages).write();
 }
 
 }  // namespace rayform

@@ -1,7 +1,7 @@
-// The glTF writer's output (GltfBuilder, gltf_builder.h): the model written
+// The glTF writer's output (GltfWriter, gltf_writer_internal.h): the model written
 // by tinygltf into a temporary folder (.gltf with its .bin, or .glb), each
 // file checked for its whole length and synced, then all renamed into place.
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/image/checked_write.h"
 #include "rayform/base/error.h"
 
@@ -46,7 +46,7 @@ void set_buffer_uri(const std::string& gltf, const std::string& uri) {
 
 }  // namespace
 
-std::string GltfBuilder::side_uri(const std::string& file) const {
+std::string GltfWriter::side_uri(const std::string& file) const {
   static const char* hex = "0123456789ABCDEF";
   std::string uri;
   for (unsigned char c : out_.side_reference(file)) {
@@ -58,7 +58,7 @@ std::string GltfBuilder::side_uri(const std::string& file) const {
 
 // A file tinygltf wrote: `bytes` long (when not 0), complete JSON (when
 // `json`), then synced; else the write failed (a full disk, most likely).
-void GltfBuilder::check_written(const std::string& file, uint64_t bytes, bool json) const {
+void GltfWriter::check_written(const std::string& file, uint64_t bytes, bool json) const {
   std::error_code ec;
   const uint64_t size = fs::file_size(file, ec);
   bool complete = !ec && size > 0 && (bytes == 0 || size == bytes);
@@ -71,7 +71,7 @@ void GltfBuilder::check_written(const std::string& file, uint64_t bytes, bool js
   if (!complete) throw Error(path_ + ": cannot write (" + error + ")");
 }
 
-SaveResult GltfBuilder::save() {
+SaveResult GltfWriter::save() {
   if (!buffer_.empty()) {
     tinygltf::Buffer b;
     b.data = std::move(buffer_);

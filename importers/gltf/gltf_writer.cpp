@@ -1,10 +1,10 @@
-// write_gltf_scene: one GltfBuilder (gltf_builder.h) per file, and its walk
+// write_gltf_scene: one GltfWriter (gltf_writer_internal.h) per file, and its walk
 // (write) in order: materials, the node tree, cameras, lights, the scene's
 // extras; then the messages on what glTF could not hold as it was, and the
 // files.
 #include "rayform/importers/gltf/gltf_writer.h"
 
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/importers/shape_tessellation.h"
 #include "rayform/importers/text_format.h"
 
@@ -16,8 +16,8 @@ namespace rayform {
 namespace gltf_detail {
 namespace fs = std::filesystem;
 
-GltfBuilder::GltfBuilder(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
-                         std::vector<std::string>* messages)
+GltfWriter::GltfWriter(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
+                       std::vector<std::string>* messages)
     : scene_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
   protect_scene_inputs(scene, out_);
   name_ = fs::path(path).filename().string();
@@ -29,7 +29,7 @@ GltfBuilder::GltfBuilder(const Scene& scene, const std::string& path, const Gltf
   }
 }
 
-SaveResult GltfBuilder::write() {
+SaveResult GltfWriter::write() {
   model_.asset.version = "2.0";
   model_.asset.generator = "rayform convert";
   for (size_t i = 0; i < scene_.materials.size(); ++i) add_material(int(i));
@@ -47,11 +47,11 @@ SaveResult GltfBuilder::write() {
   return save();
 }
 
-void GltfBuilder::note(const std::string& m) {
+void GltfWriter::note(const std::string& m) {
   if (messages_) messages_->push_back(name_ + ": " + m);
 }
 
-void GltfBuilder::report() {
+void GltfWriter::report() {
   if (spheres_)
     note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
          " segments, " + std::to_string(tessellate_sphere(Sphere{}, options_.sphere_segments).triangle_count()) +
@@ -109,7 +109,7 @@ void GltfBuilder::report() {
 SaveResult write_gltf_scene(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
                             std::vector<std::string>* messages) {
   require_scene_root(scene, path);
-  return gltf_detail::GltfBuilder(scene, path, options, messages).write();
+  return gltf_detail::GltfWriter(scene, path, options, messages).write();
 }
 
 }  // namespace rayform

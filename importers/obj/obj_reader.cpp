@@ -64,12 +64,12 @@ std::string trim(std::string s) {
   return s.substr(b, e - b + 1);
 }
 
-class ObjSceneBuilder {
+class ObjReader {
  public:
-  ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
+  ObjReader(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
       : path_(path), options_(options), warnings_(warnings), dir_(fs::path(path).parent_path()) {}
 
-  Scene build() {
+  Scene read() {
     file_ = FileBytes(path_, "OBJ file");
     text_ = file_.view();
     load_material_libraries();
@@ -580,7 +580,7 @@ class ObjSceneBuilder {
 }  // namespace
 
 Scene read_obj_scene(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings) {
-  return ObjSceneBuilder(path, options, warnings).build();
+  return ObjReader(path, options, warnings).read();
 }
 
 }  // namespace rayform

@@ -28,10 +28,10 @@ std::array<uint32_t, N> bits(const float* f) {
   return k;
 }
 
-class ObjBuilder {
+class ObjWriter {
  public:
-  ObjBuilder(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
-             std::vector<std::string>* messages)
+  ObjWriter(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
+            std::vector<std::string>* messages)
       : scene_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
     protect_scene_inputs(scene, out_);
     name_ = fs::path(path).filename().string();
@@ -430,7 +430,7 @@ class ObjBuilder {
 SaveResult write_obj_scene(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
                            std::vector<std::string>* messages) {
   require_scene_root(scene, path);
-  return ObjBuilder(scene, path, options, messages).write();
+  return ObjWriter(scene, path, options, messages).write();
 }
 
 }  // namespace rayform

@@ -1,6 +1,6 @@
-// The glTF writer's builder, one per file written (write_gltf_scene), shared
-// by the writer's parts; internal to importers/gltf/, never installed. Its
-// members are defined one concept per file:
+// The glTF writer, one per file written (write_gltf_scene), shared by the
+// writer's parts; internal to importers/gltf/, never installed. Its members
+// are defined one concept per file:
 //   gltf_writer.cpp               the walk (write) in order, and the messages on what was approximated
 //   gltf_write_values.cpp         JSON values: floats by their shortest text, rayform extras
 //   gltf_write_geometry.cpp       buffers, accessors, shapes as meshes and primitives
@@ -46,7 +46,7 @@ std::vector<double> nice_vector(std::initializer_list<float> fs);
 // extras = { "rayform": obj }
 Value rayform_extras(Value::Object obj);
 
-// ---- the builder ----------------------------------------------------------------
+// ---- the writer -----------------------------------------------------------------
 
 // One primitive to write: a shape with its material (and, for planes, the
 // object-to-world matrix that places the quad).
@@ -60,10 +60,10 @@ struct PrimitiveRef {
   }
 };
 
-class GltfBuilder {
+class GltfWriter {
  public:
-  GltfBuilder(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
-              std::vector<std::string>* messages);
+  GltfWriter(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
+             std::vector<std::string>* messages);
 
   SaveResult write();
 
