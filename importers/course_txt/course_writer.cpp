@@ -3,6 +3,7 @@
 #include "rayform/importers/course_txt/course_mesh.h"
 #include "rayform/image/output_files.h"
 #include "rayform/importers/scene_writer.h"
+#include "rayform/importers/writer_context.h"
 
 #include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
@@ -68,10 +69,7 @@ class CourseWriter {
  public:
   CourseWriter(const Scene& scene, const std::string& path, const CourseWriteOptions& options,
                std::vector<std::string>* messages)
-      : s_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
-    protect_scene_inputs(scene, out_);
-    name_ = fs::path(path).filename().string();
-    stem_ = fs::path(path).stem().string();
+      : s_(scene), options_(options), context_(scene, path, options.side_folder, messages) {
     if (std::string problem = course_side_folder_problem(path, options.side_folder); !problem.empty())
       throw Error(path + ": " + problem);
   }
@@ -80,11 +78,11 @@ class CourseWriter {
     const bool course_source = fs::path(s_.source_path).extension() == ".txt";
     if (s_.cameras.empty()) {
       add_default_camera(s_);
-      note("the source has no camera: added one framing the scene (scene/scene_defaults.h)");
+      context_.note("the source has no camera: added one framing the scene (scene/scene_defaults.h)");
     }
     if (s_.lights.empty() && !course_source) {
       add_headlight(s_);
-      note(
+      context_.note(
           "the source has no light: added a white directional headlight along the view (the course would light a "
           "scene without lights by an ambient light of 1)");
     }
@@ -99,20 +97,16 @@ class CourseWriter {
     write_materials(o);
     o << group;
     report();
-    out_.add(path_, o.str());
+    context_.out.add(context_.path, o.str());
     for (const std::string& d : folders_) {
       std::error_code ec;
       fs::create_directories(d, ec);
       if (ec) throw Error(d + ": cannot create folder: " + ec.message());
     }
-    return SaveResult{out_.commit(), stored_triangles_};
+    return SaveResult{context_.out.commit(), stored_triangles_};
   }
 
  private:
-  void note(const std::string& m) {
-    if (messages_) messages_->push_back(name_ + ": " + m);
-  }
-
   // ---- dialect -------------------------------------------------------------------
 
   bool raw_up_matters(const Camera& c) const {
@@ -126,7 +120,8 @@ class CourseWriter {
     // Materials of the 2012 assignment 5 (which has falloff too).
     for (const Material& m : s_.materials)
       if (m.noise.enabled || !m.specular_highlight || !m.back_faces_cast_shadows) {
-        note("written in the a5 dialect (materials of the 2012 assignment 5: Noise, no highlight, its shadow rule)");
+        context_.note(
+            "written in the a5 dialect (materials of the 2012 assignment 5: Noise, no highlight, its shadow rule)");
         return CourseDialect::a5;
       }
     const char* why = nullptr;
@@ -144,7 +139,7 @@ class CourseWriter {
         if (d19 < 1e-2f && d12 >= 1e-2f) why = "mesh normals made by the 2019 rule";
       }
     if (!why) return CourseDialect::v2012;
-    note(std::string("written in the 2019 dialect (") + why + ")");
+    context_.note(std::string("written in the 2019 dialect (") + why + ")");
     return CourseDialect::v2019;
   }
 
@@ -153,18 +148,19 @@ class CourseWriter {
   void write_camera(std::ostringstream& o) {
     const Camera& c = s_.cameras[0];
     if (s_.cameras.size() > 1)
-      note(std::to_string(s_.cameras.size() - 1) + " camera(s) after the first dropped (the course has one camera)");
+      context_.note(std::to_string(s_.cameras.size() - 1) +
+                    " camera(s) after the first dropped (the course has one camera)");
     float angle = c.fov_deg;
     if (c.projection == Camera::Projection::orthographic) {
-      note("orthographic camera written as a perspective camera of angle " + format_float(angle) +
-           " (the course has perspective cameras only)");
+      context_.note("orthographic camera written as a perspective camera of angle " + format_float(angle) +
+                    " (the course has perspective cameras only)");
     }
     if (c.aspect == Camera::Aspect::fit)
-      note(
+      context_.note(
           "camera: the course stretches the view to the image's shape (no aspect correction): the same picture for "
           "square images only");
     if (dialect_ == CourseDialect::v2012 && raw_up_matters(c))
-      note("camera: its raw up vector (2019) becomes the orthonormal one in the 2012 dialect");
+      context_.note("camera: its raw up vector (2019) becomes the orthonormal one in the 2012 dialect");
     o << "PerspectiveCamera {\n"
       << "    center " << format_vec3(c.center) << "\n"
       << "    direction " << format_vec3(c.direction) << "\n"
@@ -193,21 +189,23 @@ class CourseWriter {
       o << "    }\n";
     }
     o << "}\n\n";
-    if (spots) note(std::to_string(spots) + " spot light(s) written as point lights (the course has no spot lights)");
-    if (ranges) note(std::to_string(ranges) + " light range(s) dropped (the course has none)");
+    if (spots)
+      context_.note(std::to_string(spots) + " spot light(s) written as point lights (the course has no spot lights)");
+    if (ranges) context_.note(std::to_string(ranges) + " light range(s) dropped (the course has none)");
     if (falloffs)
-      note(std::to_string(falloffs) +
-           " point light(s) lose their falloff: the 2012 dialect does not attenuate (write "
-           "--dialect 2019 to keep it)");
+      context_.note(std::to_string(falloffs) +
+                    " point light(s) lose their falloff: the 2012 dialect does not attenuate (write "
+                    "--dialect 2019 to keep it)");
     if (s_.lights.empty())
-      note("no lights: the course lights such a scene by an ambient light of 1 (each pixel shows its diffuse colour)");
+      context_.note(
+          "no lights: the course lights such a scene by an ambient light of 1 (each pixel shows its diffuse colour)");
   }
 
   void write_background(std::ostringstream& o) {
     const Background& b = s_.background;
     o << "Background {\n    color " << format_vec3(b.color) << "\n    ambientLight " << format_vec3(b.ambient) << "\n";
     if (b.cube_map[0] != invalid) {
-      std::string dir = safe_file_name(stem_ + "_cubemap");
+      std::string dir = safe_file_name(context_.stem + "_cubemap");
       static const char* faces[6] = {"right", "left", "up", "down", "front", "back"};
       bool ok = true;
       for (int i = 0; i < 6 && ok; ++i) {
@@ -221,15 +219,17 @@ class CourseWriter {
           const std::string face_type = cube_map_extension(dialect_);
           std::string ext;
           std::vector<uint8_t> bytes = texture_file(s_.textures[size_t(t)], {face_type.substr(1)}, &ext);
-          out_.add((fs::path(out_.side_path(dir)) / (std::string(faces[i]) + face_type)).string(), std::move(bytes));
+          context_.out.add((fs::path(context_.out.side_path(dir)) / (std::string(faces[i]) + face_type)).string(),
+                           std::move(bytes));
         } catch (const Error& e) {
-          note(std::string("cube map face ") + faces[i] + " cannot be read (" + e.what() + "); cube map dropped");
+          context_.note(std::string("cube map face ") + faces[i] + " cannot be read (" + e.what() +
+                        "); cube map dropped");
           ok = false;
         }
       }
       if (ok) {
-        folders_.push_back(out_.side_path(dir));
-        o << "    cubeMap " << out_.side_reference(dir) << "\n";
+        folders_.push_back(context_.out.side_path(dir));
+        o << "    cubeMap " << context_.out.side_reference(dir) << "\n";
       }
     }
     o << "}\n\n";
@@ -271,28 +271,31 @@ class CourseWriter {
     }
     if (need_default_) o << "    PhongMaterial {\n        diffuseColor 1 1 1\n    }\n";
     o << "}\n\n";
-    if (!emissive.empty()) note("materials " + quoted_list(emissive) + ": emission dropped (the course has none)");
+    if (!emissive.empty())
+      context_.note("materials " + quoted_list(emissive) + ": emission dropped (the course has none)");
     if (!cutouts.empty())
-      note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
+      context_.note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
     if (!two_sided.empty())
-      note("materials " + quoted_list(two_sided) +
-           ": back faces are shaded with their normals as given, not reversed " +
-           "towards the viewer (the course format's convention)");
+      context_.note("materials " + quoted_list(two_sided) +
+                    ": back faces are shaded with their normals as given, not reversed " +
+                    "towards the viewer (the course format's convention)");
     if (!single_sided.empty())
-      note("materials " + quoted_list(single_sided) +
-           ": single-sided becomes double-sided (the course has no such flag)");
+      context_.note("materials " + quoted_list(single_sided) +
+                    ": single-sided becomes double-sided (the course has no such flag)");
     if (!modulated.empty())
-      note("materials " + quoted_list(modulated) +
-           ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
+      context_.note(
+          "materials " + quoted_list(modulated) +
+          ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
     if (!bumps_dropped.empty())
-      note("materials " + quoted_list(bumps_dropped) + ": bump maps dropped (2012 dialect; write --dialect 2019)");
+      context_.note("materials " + quoted_list(bumps_dropped) +
+                    ": bump maps dropped (2012 dialect; write --dialect 2019)");
     if (need_default_)
-      note("shapes without a material follow a MaterialIndex: they use an added white material " +
-           std::to_string(s_.materials.size()));
+      context_.note("shapes without a material follow a MaterialIndex: they use an added white material " +
+                    std::to_string(s_.materials.size()));
     for (const Mesh& m : s_.meshes)
       if (!m.colors.empty()) vertex_colored.insert(m.name);
     if (!vertex_colored.empty())
-      note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
+      context_.note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
   }
 
   // The BMP file of a Scene texture ("" when it cannot be read).
@@ -302,12 +305,12 @@ class CourseWriter {
     if (it != textures_.end()) return it->second;
     const Texture& t = s_.textures[size_t(ti)];
     std::string base = texture_base_name(t);
-    std::string file = unique_file(safe_file_name(stem_ + "_" + base), ".bmp");
+    std::string file = unique_file(safe_file_name(context_.stem + "_" + base), ".bmp");
     try {
       std::string ext;
       std::vector<uint8_t> bytes = texture_file(t, {"bmp"}, &ext);
-      out_.add(out_.side_path(file), std::move(bytes));
-      file = out_.side_reference(file);
+      context_.out.add(context_.out.side_path(file), std::move(bytes));
+      file = context_.out.side_reference(file);
       if (!t.pixels.empty() && t.channels == 4) {
         for (size_t i = 3; i < t.pixels.size(); i += 4)
           if (t.pixels[i] != 255) {
@@ -316,8 +319,8 @@ class CourseWriter {
           }
       }
     } catch (const Error& e) {
-      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
-           "); materials using it are untextured");
+      context_.note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+                    "); materials using it are untextured");
       file.clear();
     }
     if (t.srgb) srgb_.insert(t.name);
@@ -363,7 +366,7 @@ class CourseWriter {
           sub.indices.insert(sub.indices.end(), m.indices.begin() + long(3 * f), m.indices.begin() + long(3 * f + 3));
     }
     for (uint32_t i : sub.indices)
-      if (i >= m.positions.size()) throw Error(path_ + ": mesh '" + m.name + "' has an index out of range");
+      if (i >= m.positions.size()) throw Error(context_.path + ": mesh '" + m.name + "' has an index out of range");
     const bool has_normals = m.normals.size() == m.positions.size();
     const bool has_uvs = m.uvs.size() == m.positions.size();
     std::vector<uint32_t> share = sharing(m);
@@ -423,10 +426,10 @@ class CourseWriter {
     }
     std::string base = fs::path(m.name.empty() ? "mesh" : m.name).stem().string();
     if (part != invalid && !m.face_materials.empty()) base += "_" + std::to_string(part);
-    std::string file = unique_file(safe_file_name(stem_ + "_" + base), ".obj");
+    std::string file = unique_file(safe_file_name(context_.stem + "_" + base), ".obj");
     stored_triangles_ += sub.indices.size() / 3;
-    out_.add(out_.side_path(file), text);
-    file = out_.side_reference(file);
+    context_.out.add(context_.out.side_path(file), text);
+    file = context_.out.side_reference(file);
     mesh_files_[key] = file;
     mesh_texts_.emplace(std::move(text), file);
     return file;
@@ -456,7 +459,7 @@ class CourseWriter {
 
   const Node& node(int i) const {
     if (i < 0 || size_t(i) >= s_.nodes.size())
-      throw Error(path_ + ": scene node " + std::to_string(i) + " does not exist");
+      throw Error(context_.path + ": scene node " + std::to_string(i) + " does not exist");
     return s_.nodes[size_t(i)];
   }
 
@@ -471,7 +474,7 @@ class CourseWriter {
     const Node& n = node(i);
     if (objects_.empty()) objects_.assign(s_.nodes.size(), -1);
     if (objects_[size_t(i)] >= 0) return objects_[size_t(i)];
-    if (++depth_ > 10000) throw Error(path_ + ": the node graph is too deep or has a cycle");
+    if (++depth_ > 10000) throw Error(context_.path + ": the node graph is too deep or has a cycle");
     int r;
     if (n.kind == Node::Kind::shape) {
       int p = int(parts(n).size());
@@ -624,7 +627,7 @@ class CourseWriter {
     const Node& n = node(r);
     if (group_like(n)) {
       int sum = children_objects(n);
-      if (sum == 0) note("the scene has no shapes: the Group is empty");
+      if (sum == 0) context_.note("the scene has no shapes: the Group is empty");
       write_group(n, sum, o, "");
     } else {
       o << "Group {\n    numObjects 1\n";
@@ -638,31 +641,33 @@ class CourseWriter {
 
   void report() {
     if (!normals_changed_.empty())
-      note("meshes " + quoted_list(normals_changed_) +
-           ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
-           "by up to " +
-           format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
+      context_.note(
+          "meshes " + quoted_list(normals_changed_) +
+          ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
+          "by up to " +
+          format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
     if (!baked_uvs_.empty())
-      note("materials " + quoted_list(baked_uvs_) + ": uv transform baked into the uvs of their meshes' OBJ files");
+      context_.note("materials " + quoted_list(baked_uvs_) +
+                    ": uv transform baked into the uvs of their meshes' OBJ files");
     if (!srgb_.empty())
-      note("textures " + quoted_list(srgb_) +
-           ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
+      context_.note("textures " + quoted_list(srgb_) +
+                    ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
     if (!half_texel_.empty())
-      note("textures " + quoted_list(half_texel_) +
-           ": the course samples with texel centres on whole numbers (half a texel off "
-           "the usual convention)");
+      context_.note("textures " + quoted_list(half_texel_) +
+                    ": the course samples with texel centres on whole numbers (half a texel off "
+                    "the usual convention)");
     if (!repeat_.empty())
-      note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
+      context_.note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
     if (!nearest_.empty())
-      note("textures " + quoted_list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
-    if (!alpha_dropped_.empty()) note("textures " + quoted_list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
+      context_.note("textures " + quoted_list(nearest_) +
+                    ": nearest filtering dropped (the course filters bilinearly)");
+    if (!alpha_dropped_.empty())
+      context_.note("textures " + quoted_list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
   }
 
   Scene s_;
-  std::string path_, name_, stem_;
   CourseWriteOptions options_;
-  std::vector<std::string>* messages_;
-  OutputFiles out_;
+  WriterContext context_;  // the output's path and names, its files, the messages
   CourseDialect dialect_ = CourseDialect::v2012;
   int current_ = -1;
   bool need_default_ = false;

@@ -76,7 +76,7 @@ GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material)
   std::vector<int64_t> remap(m.positions.size(), -1);
   std::vector<uint32_t> used;
   for (uint32_t& c : corners) {
-    if (c >= m.positions.size()) throw Error(path_ + ": mesh '" + m.name + "' has an index out of range");
+    if (c >= m.positions.size()) throw Error(context_.path + ": mesh '" + m.name + "' has an index out of range");
     if (remap[c] < 0) {
       remap[c] = int64_t(used.size());
       used.push_back(c);

@@ -47,7 +47,8 @@ int GltfWriter::add_texture(int ti) {
   try {
     bytes = texture_file(t, {"png", "jpg"}, &ext);
   } catch (const Error& e) {
-    note(std::string("texture '") + t.name + "' cannot be read (" + e.what() + "); materials using it are untextured");
+    context_.note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+                  "); materials using it are untextured");
     textures_[ti] = -1;
     return -1;
   }
@@ -63,12 +64,12 @@ int GltfWriter::add_texture(int ti) {
     img.bufferView = add_view(bytes.data(), bytes.size(), 0);
     // tinygltf writes "target" only for the two buffer targets: none here.
   } else {
-    std::string file = safe_file_name(stem_ + "_" + base) + "." + ext;
+    std::string file = safe_file_name(context_.stem + "_" + base) + "." + ext;
     for (int k = 2; used_files_.count(file); ++k)
-      file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
+      file = safe_file_name(context_.stem + "_" + base + "_" + std::to_string(k)) + "." + ext;
     used_files_.insert(file);
     img.uri = side_uri(file);
-    out_.add(out_.side_path(file), std::move(bytes));
+    context_.out.add(context_.out.side_path(file), std::move(bytes));
   }
   model_.images.push_back(std::move(img));
   tinygltf::Texture gt;

@@ -131,8 +131,9 @@ std::vector<int> GltfWriter::root_nodes(const mat4& world) {
 
 int GltfWriter::write_node(int index, const mat4& parent_world) {
   if (index < 0 || size_t(index) >= scene_.nodes.size())
-    throw Error(path_ + ": scene node " + std::to_string(index) + " does not exist");
-  if (on_path_[size_t(index)]) throw Error(path_ + ": scene node " + std::to_string(index) + " is its own ancestor");
+    throw Error(context_.path + ": scene node " + std::to_string(index) + " does not exist");
+  if (on_path_[size_t(index)])
+    throw Error(context_.path + ": scene node " + std::to_string(index) + " is its own ancestor");
   on_path_[size_t(index)] = 1;
   const Node& n = scene_.nodes[size_t(index)];
   tinygltf::Node g;

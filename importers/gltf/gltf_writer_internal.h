@@ -12,7 +12,7 @@
 
 #include "rayform/geometry/bounds.h"
 #include "rayform/importers/gltf/gltf_writer.h"
-#include "rayform/image/output_files.h"
+#include "rayform/importers/writer_context.h"
 #include "rayform/scene/scene.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
@@ -69,7 +69,6 @@ class GltfWriter {
 
  private:
   // ---- gltf_writer.cpp ----------------------------------------------------------
-  void note(const std::string& m);
   void report();
 
   // ---- gltf_write_geometry.cpp --------------------------------------------------
@@ -114,10 +113,8 @@ class GltfWriter {
   SaveResult save();
 
   const Scene& scene_;
-  std::string path_, name_, stem_;
   GltfWriteOptions options_;
-  std::vector<std::string>* messages_;
-  OutputFiles out_;
+  WriterContext context_;  // the output's path and names, its files, the messages
   tinygltf::Model model_;
   std::vector<uint8_t> buffer_;
   Bounds3 extent_;
