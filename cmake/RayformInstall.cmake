@@ -42,7 +42,7 @@ set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_accel_
                             importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h
                             importers/obj/obj_parse_bytes.h importers/obj/obj_polygon_split.h
                             importers/obj/obj_smooth_normals.h importers/obj/obj_vertex_weld.h
-                            importers/file_bytes.h)
+                            importers/course_txt/course_writer_internal.h importers/file_bytes.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})
   string(REPLACE "." "\\." _h "${_h}")
