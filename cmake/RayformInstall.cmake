@@ -38,12 +38,12 @@ endif()
 # (tests/package compiles every installed header with nothing but
 # rayform::core's usage requirements).
 set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_accel_kernel.h src/accel/mesh_accel_packet8.h
-                            importers/gltf/gltf_accessors.h importers/gltf/gltf_builder.h
-                            importers/gltf/gltf_file_access.h importers/gltf/gltf_scene_builder.h
+                            importers/gltf/gltf_accessors.h importers/gltf/gltf_writer_internal.h
+                            importers/gltf/gltf_file_access.h importers/gltf/gltf_reader_internal.h
                             importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h
                             importers/obj/obj_parse_bytes.h importers/obj/obj_polygon_split.h
                             importers/obj/obj_smooth_normals.h importers/obj/obj_vertex_weld.h
-                            importers/file_bytes.h)
+                            importers/course_txt/course_writer_internal.h importers/file_bytes.h)
 set(_exclude "")
 foreach(_h ${RAYFORM_PRIVATE_HEADERS})
   string(REPLACE "." "\\." _h "${_h}")

@@ -15,9 +15,9 @@ namespace rayform {
 namespace fs = std::filesystem;
 namespace {
 
-class CourseParser {
+class CourseReader {
  public:
-  CourseParser(std::string_view text, const std::string& path, CourseDialect dialect, const FileAccess& access)
+  CourseReader(std::string_view text, const std::string& path, CourseDialect dialect, const FileAccess& access)
       : tokens_(text, path), path_(path), dialect_(dialect), access_(access) {}
 
   CourseScene parse() {
@@ -566,7 +566,7 @@ CourseDialect detect_course_dialect(std::string_view text, const std::string& pa
 
 CourseScene parse_course_scene(std::string_view text, const std::string& path, const CourseReadOptions& options) {
   const CourseDialect dialect = options.dialect ? *options.dialect : detect_course_dialect(text, path, options.access);
-  return CourseParser(text, path, dialect, options.access).parse();
+  return CourseReader(text, path, dialect, options.access).parse();
 }
 
 CourseScene read_course_scene(const std::string& path, const CourseReadOptions& options) {

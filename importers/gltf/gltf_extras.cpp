@@ -62,32 +62,43 @@ bool same_point(vec3 a, vec3 b) {
   return glm::length(a - b) <= 1e-4f * std::max({1.f, glm::length(a), glm::length(b)});
 }
 
-}  // namespace
+// One application of the extras: the file, how the reader mapped it to the
+// Scene, the Scene and the warnings.
+struct ExtrasInput {
+  const tinygltf::Model& model;
+  const GltfSceneMapping& map;
+  Scene& scene;
+  std::vector<std::string>* warnings;
 
-void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapping& map, Scene& scene,
-                               std::vector<std::string>* warnings) {
-  auto warn = [&](const std::string& w) {
+  void warn(const std::string& w) const {
     if (warnings) warnings->push_back(w + "; that rayform extra is ignored");
-  };
-  auto scene_texture = [&](int ti) -> int {
+  }
+  // The Scene texture of glTF texture `ti`, or invalid.
+  int scene_texture(int ti) const {
     if (ti < 0 || size_t(ti) >= model.textures.size() || !map.texture) return invalid;
     return map.texture(ti);
-  };
+  }
+};
 
-  // Textures: how the course reads them.
-  for (size_t ti = 0; ti < model.textures.size(); ++ti) {
-    const Value* ex = rayform_of(model.textures[ti].extras);
+// Textures: how the course reads them.
+void apply_texture_extras(const ExtrasInput& in) {
+  for (size_t ti = 0; ti < in.model.textures.size(); ++ti) {
+    const Value* ex = rayform_of(in.model.textures[ti].extras);
     if (!ex) continue;
-    int t = scene_texture(int(ti));
-    if (t == invalid || size_t(t) >= scene.textures.size()) continue;
+    int t = in.scene_texture(int(ti));
+    if (t == invalid || size_t(t) >= in.scene.textures.size()) continue;
     std::string lookup;
     if (get_string(*ex, "lookup", &lookup))
-      scene.textures[size_t(t)].lookup = lookup == "course" ? Texture::Lookup::course : Texture::Lookup::standard;
+      in.scene.textures[size_t(t)].lookup = lookup == "course" ? Texture::Lookup::course : Texture::Lookup::standard;
     bool srgb = true;
-    if (get_bool(*ex, "srgb", &srgb)) scene.textures[size_t(t)].srgb = srgb;
+    if (get_bool(*ex, "srgb", &srgb)) in.scene.textures[size_t(t)].srgb = srgb;
   }
+}
 
-  // Background.
+void apply_background_extras(const ExtrasInput& in) {
+  const tinygltf::Model& model = in.model;
+  const GltfSceneMapping& map = in.map;
+  Scene& scene = in.scene;
   if (map.scene >= 0 && size_t(map.scene) < model.scenes.size()) {
     if (const Value* ex = rayform_of(model.scenes[size_t(map.scene)].extras); ex && ex->Has("background")) {
       const Value& bg = ex->Get("background");
@@ -99,45 +110,56 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
           bool ok = true;
           for (int i = 0; i < 6; ++i) {
             const Value& f = bg.Get("cube_map").Get(i);
-            faces[size_t(i)] = f.IsNumber() ? scene_texture(f.GetNumberAsInt()) : invalid;
+            faces[size_t(i)] = f.IsNumber() ? in.scene_texture(f.GetNumberAsInt()) : invalid;
             ok &= faces[size_t(i)] != invalid;
           }
           if (ok) {
             scene.background.cube_map = faces;
             get_string(bg, "cube_map_dir", &scene.background.cube_map_dir);
           } else {
-            warn("scenes[" + std::to_string(map.scene) + "].extras: the background's cube map names a missing texture");
+            in.warn("scenes[" + std::to_string(map.scene) +
+                    "].extras: the background's cube map names a missing texture");
           }
         }
       }
     }
   }
+}
 
-  // Materials: the Phong values, if the PBR values are still those written.
+// Whether the material's PBR values are still those rayform wrote beside its
+// Phong extras (its "pbr" extra).
+bool pbr_as_written(const tinygltf::Material& gm, const Value& ex) {
+  bool same = ex.Has("pbr") && ex.Get("pbr").IsObject();
+  if (same) {
+    const Value& p = ex.Get("pbr");
+    const auto& bc = gm.pbrMetallicRoughness.baseColorFactor;
+    if (!p.Has("base") || !p.Get("base").IsArray() || p.Get("base").ArrayLen() != 4 || bc.size() != 4) same = false;
+    for (int i = 0; same && i < 4; ++i)
+      same = std::abs(p.Get("base").Get(i).GetNumberAsDouble() - bc[size_t(i)]) <= 1e-9;
+    float metallic = -1.f, roughness = -1.f;
+    same = same && get_float(p, "metallic", &metallic) && get_float(p, "roughness", &roughness) &&
+           std::abs(double(metallic) - gm.pbrMetallicRoughness.metallicFactor) <= 1e-6 &&
+           std::abs(double(roughness) - gm.pbrMetallicRoughness.roughnessFactor) <= 1e-6;
+  }
+  return same;
+}
+
+// Materials: the Phong values, if the PBR values are still those written.
+void apply_material_extras(const ExtrasInput& in) {
+  const tinygltf::Model& model = in.model;
+  const GltfSceneMapping& map = in.map;
   for (size_t gi = 0; gi < model.materials.size() && gi < map.materials.size(); ++gi) {
     const tinygltf::Material& gm = model.materials[gi];
     const Value* ex = rayform_of(gm.extras);
     int mi = map.materials[gi];
-    if (!ex || mi < 0 || size_t(mi) >= scene.materials.size()) continue;
+    if (!ex || mi < 0 || size_t(mi) >= in.scene.materials.size()) continue;
     const std::string where = "materials[" + std::to_string(gi) + "]";
-    bool same = ex->Has("pbr") && ex->Get("pbr").IsObject();
-    if (same) {
-      const Value& p = ex->Get("pbr");
-      const auto& bc = gm.pbrMetallicRoughness.baseColorFactor;
-      if (!p.Has("base") || !p.Get("base").IsArray() || p.Get("base").ArrayLen() != 4 || bc.size() != 4) same = false;
-      for (int i = 0; same && i < 4; ++i)
-        same = std::abs(p.Get("base").Get(i).GetNumberAsDouble() - bc[size_t(i)]) <= 1e-9;
-      float metallic = -1.f, roughness = -1.f;
-      same = same && get_float(p, "metallic", &metallic) && get_float(p, "roughness", &roughness) &&
-             std::abs(double(metallic) - gm.pbrMetallicRoughness.metallicFactor) <= 1e-6 &&
-             std::abs(double(roughness) - gm.pbrMetallicRoughness.roughnessFactor) <= 1e-6;
-    }
-    if (!same) {
-      warn(where +
-           ": its metallic-roughness values are not those rayform wrote (edited?), so its Phong extras are stale");
+    if (!pbr_as_written(gm, *ex)) {
+      in.warn(where +
+              ": its metallic-roughness values are not those rayform wrote (edited?), so its Phong extras are stale");
       continue;
     }
-    Material& m = scene.materials[size_t(mi)];
+    Material& m = in.scene.materials[size_t(mi)];
     if (ex->Has("phong") && ex->Get("phong").IsObject()) {
       const Value& ph = ex->Get("phong");
       get_vec3(ph, "diffuse", &m.diffuse);
@@ -161,56 +183,60 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
         n.octaves = int(octaves);
         m.noise = n;
       } else {
-        warn(where + ": its noise extras are incomplete or out of range; the noise is dropped");
+        in.warn(where + ": its noise extras are incomplete or out of range; the noise is dropped");
       }
     }
     if (!get_vec3(*ex, "emission", &m.emission)) m.emission = vec3(0.f);
     get_float(*ex, "alpha_cutoff", &m.alpha_cutoff);
     if (ex->Has("bump_texture") && ex->Get("bump_texture").IsNumber())
-      m.bump_texture = scene_texture(ex->Get("bump_texture").GetNumberAsInt());
+      m.bump_texture = in.scene_texture(ex->Get("bump_texture").GetNumberAsInt());
   }
+}
 
-  // Untextured copies of materials (for primitives without uvs) fold back
-  // into their originals.
-  {
-    std::vector<int> remap(scene.materials.size());
-    for (size_t i = 0; i < remap.size(); ++i) remap[i] = int(i);
-    bool any = false;
-    for (size_t gi = 0; gi < model.materials.size() && gi < map.materials.size(); ++gi) {
-      const Value* ex = rayform_of(model.materials[gi].extras);
-      if (!ex || !ex->Has("variant_of") || !ex->Get("variant_of").IsNumber()) continue;
-      int of = ex->Get("variant_of").GetNumberAsInt();
-      int from = map.materials[gi];
-      if (of < 0 || size_t(of) >= map.materials.size() || from < 0 || size_t(from) >= remap.size()) continue;
-      int to = map.materials[size_t(of)];
-      if (to < 0 || size_t(to) >= remap.size() || to == from) continue;
-      remap[size_t(from)] = to;
-      any = true;
-    }
-    if (any) {
-      std::vector<int> index(scene.materials.size(), invalid);
-      std::vector<Material> kept;
-      for (size_t i = 0; i < scene.materials.size(); ++i)
-        if (remap[i] == int(i)) {
-          index[i] = int(kept.size());
-          kept.push_back(std::move(scene.materials[i]));
-        }
-      for (size_t i = 0; i < remap.size(); ++i) remap[i] = index[size_t(remap[i])];
-      scene.materials = std::move(kept);
-      auto fix = [&](int m) { return m >= 0 && size_t(m) < remap.size() ? remap[size_t(m)] : m; };
-      for (Node& n : scene.nodes) n.material = fix(n.material);
-      for (Mesh& m : scene.meshes)
-        for (int& fm : m.face_materials) fm = fix(fm);
-    }
+// Untextured copies of materials (for primitives without uvs) fold back
+// into their originals.
+void fold_untextured_copies(const ExtrasInput& in) {
+  const tinygltf::Model& model = in.model;
+  const GltfSceneMapping& map = in.map;
+  Scene& scene = in.scene;
+  std::vector<int> remap(scene.materials.size());
+  for (size_t i = 0; i < remap.size(); ++i) remap[i] = int(i);
+  bool any = false;
+  for (size_t gi = 0; gi < model.materials.size() && gi < map.materials.size(); ++gi) {
+    const Value* ex = rayform_of(model.materials[gi].extras);
+    if (!ex || !ex->Has("variant_of") || !ex->Get("variant_of").IsNumber()) continue;
+    int of = ex->Get("variant_of").GetNumberAsInt();
+    int from = map.materials[gi];
+    if (of < 0 || size_t(of) >= map.materials.size() || from < 0 || size_t(from) >= remap.size()) continue;
+    int to = map.materials[size_t(of)];
+    if (to < 0 || size_t(to) >= remap.size() || to == from) continue;
+    remap[size_t(from)] = to;
+    any = true;
   }
+  if (!any) return;
+  std::vector<int> index(scene.materials.size(), invalid);
+  std::vector<Material> kept;
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (remap[i] == int(i)) {
+      index[i] = int(kept.size());
+      kept.push_back(std::move(scene.materials[i]));
+    }
+  for (size_t i = 0; i < remap.size(); ++i) remap[i] = index[size_t(remap[i])];
+  scene.materials = std::move(kept);
+  auto fix = [&](int m) { return m >= 0 && size_t(m) < remap.size() ? remap[size_t(m)] : m; };
+  for (Node& n : scene.nodes) n.material = fix(n.material);
+  for (Mesh& m : scene.meshes)
+    for (int& fm : m.face_materials) fm = fix(fm);
+}
 
-  // Cameras, found by the name the reader gave them.
-  for (size_t ci = 0; ci < model.cameras.size(); ++ci) {
-    const tinygltf::Camera& gc = model.cameras[ci];
+// Cameras, found by the name the reader gave them.
+void apply_camera_extras(const ExtrasInput& in) {
+  for (size_t ci = 0; ci < in.model.cameras.size(); ++ci) {
+    const tinygltf::Camera& gc = in.model.cameras[ci];
     const Value* ex = rayform_of(gc.extras);
     if (!ex) continue;
     const std::string name = gc.name.empty() ? "cameras[" + std::to_string(ci) + "]" : gc.name;
-    for (Camera& c : scene.cameras) {
+    for (Camera& c : in.scene.cameras) {
       if (c.name != name) continue;
       std::string aspect, up_vector, original;
       if (get_string(*ex, "aspect", &aspect))
@@ -224,7 +250,7 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
            (c.projection == Camera::Projection::perspective ? std::abs(fov - c.fov_deg) <= 1e-4f * fov
                                                             : std::abs(height - c.ortho_height) <= 1e-4f * height);
       if (!ok) {
-        warn("cameras[" + std::to_string(ci) + "]: its node no longer places it where its extras say (moved?)");
+        in.warn("cameras[" + std::to_string(ci) + "]: its node no longer places it where its extras say (moved?)");
         continue;
       }
       c.center = center;
@@ -237,15 +263,17 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
       if (get_string(*ex, "name", &original)) c.name = original;
     }
   }
+}
 
-  // Lights, likewise.
-  for (size_t li = 0; li < model.lights.size(); ++li) {
-    const tinygltf::Light& gl = model.lights[li];
+// Lights, found by the name the reader gave them.
+void apply_light_extras(const ExtrasInput& in) {
+  for (size_t li = 0; li < in.model.lights.size(); ++li) {
+    const tinygltf::Light& gl = in.model.lights[li];
     const Value* ex = rayform_of(gl.extras);
     if (!ex) continue;
     const std::string name =
         gl.name.empty() ? "extensions.KHR_lights_punctual.lights[" + std::to_string(li) + "]" : gl.name;
-    for (Light& l : scene.lights) {
+    for (Light& l : in.scene.lights) {
       if (l.name != name) continue;
       vec3 color, position, direction;
       float falloff = 0.f;
@@ -258,8 +286,8 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
       ok = ok && (l.kind != Light::Kind::directional ||
                   glm::length(color - l.color) <= 1e-4f * std::max(1.f, glm::length(color)));
       if (!ok) {
-        warn("KHR_lights_punctual.lights[" + std::to_string(li) +
-             "]: its node or colour no longer match its extras (edited?)");
+        in.warn("KHR_lights_punctual.lights[" + std::to_string(li) +
+                "]: its node or colour no longer match its extras (edited?)");
         continue;
       }
       l.color = color;
@@ -271,63 +299,83 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
       if (get_string(*ex, "name", &original)) l.name = original;
     }
   }
+}
 
-  // Analytic shapes in place of their tessellations.
-  std::map<int, std::pair<ShapeKind, int>> replace;  // Scene mesh -> new shape
-  for (size_t mi = 0; mi < model.meshes.size() && mi < map.mesh_primitives.size(); ++mi) {
-    const auto& prims = model.meshes[mi].primitives;
-    if (map.mesh_primitives[mi].size() != prims.size()) continue;
+// Scene mesh -> the analytic shape that replaces its tessellation.
+using ShapeReplacements = std::map<int, std::pair<ShapeKind, int>>;
+
+// The analytic shape of one primitive's extras `ex` added to the Scene and
+// recorded in `replace`, when the tessellation `mesh` (Scene mesh k) still
+// lies on it; `where` names the primitive in warnings.
+void add_analytic_shape(const ExtrasInput& in, const Value& ex, int k, const std::string& where,
+                        ShapeReplacements& replace) {
+  Scene& scene = in.scene;
+  Mesh& mesh = scene.meshes[size_t(k)];
+  std::string name;
+  if (get_string(ex, "name", &name)) mesh.name = name;
+  if (ex.Has("sphere") && ex.Get("sphere").IsObject()) {
+    Sphere s;
+    const Value& sv = ex.Get("sphere");
+    bool ok = get_vec3(sv, "center", &s.center) && get_float(sv, "radius", &s.radius) && s.radius > 0.f &&
+              !mesh.positions.empty();
+    for (size_t i = 0; ok && i < mesh.positions.size(); ++i)
+      ok = std::abs(glm::length(mesh.positions[i] - s.center) - s.radius) <=
+           1e-4f * s.radius + 1e-6f * glm::length(s.center);
+    if (!ok) {
+      in.warn(where + ": its vertices no longer lie on the sphere its extras describe (edited?)");
+      return;
+    }
+    scene.spheres.push_back(s);
+    replace[k] = {ShapeKind::sphere, int(scene.spheres.size()) - 1};
+  } else if (ex.Has("plane") && ex.Get("plane").IsObject()) {
+    Plane p;
+    const Value& pv = ex.Get("plane");
+    bool ok = get_vec3(pv, "normal", &p.normal) && get_float(pv, "offset", &p.offset) && glm::length(p.normal) > 0.f &&
+              !mesh.positions.empty();
+    for (size_t i = 0; ok && i < mesh.positions.size(); ++i) {
+      const vec3& q = mesh.positions[i];
+      float scale = std::max({1.f, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+      ok = std::abs(glm::dot(glm::normalize(p.normal), q) - p.offset / glm::length(p.normal)) <= 1e-5f * scale;
+    }
+    if (!ok) {
+      in.warn(where + ": its vertices no longer lie on the plane its extras describe (edited?)");
+      return;
+    }
+    scene.planes.push_back(p);
+    replace[k] = {ShapeKind::plane, int(scene.planes.size()) - 1};
+  } else if (ex.Has("triangle")) {
+    if (mesh.positions.size() != 3 || mesh.indices.size() != 3) {
+      in.warn(where + ": its extras describe one triangle but it holds " + std::to_string(mesh.triangle_count()));
+      return;
+    }
+    Triangle t;
+    for (int c = 0; c < 3; ++c) t.vertices[size_t(c)] = mesh.positions[mesh.indices[size_t(c)]];
+    scene.triangles.push_back(t);
+    replace[k] = {ShapeKind::triangle, int(scene.triangles.size()) - 1};
+  }
+}
+
+// Analytic shapes in place of their tessellations: the shapes of the
+// primitives' extras added to the Scene.
+ShapeReplacements add_analytic_shapes(const ExtrasInput& in) {
+  ShapeReplacements replace;
+  for (size_t mi = 0; mi < in.model.meshes.size() && mi < in.map.mesh_primitives.size(); ++mi) {
+    const auto& prims = in.model.meshes[mi].primitives;
+    if (in.map.mesh_primitives[mi].size() != prims.size()) continue;
     for (size_t j = 0; j < prims.size(); ++j) {
       const Value* ex = rayform_of(prims[j].extras);
-      int k = map.mesh_primitives[mi][j];
-      if (!ex || k < 0 || size_t(k) >= scene.meshes.size()) continue;
-      Mesh& mesh = scene.meshes[size_t(k)];
+      int k = in.map.mesh_primitives[mi][j];
+      if (!ex || k < 0 || size_t(k) >= in.scene.meshes.size()) continue;
       const std::string where = "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(j) + "]";
-      std::string name;
-      if (get_string(*ex, "name", &name)) mesh.name = name;
-      if (ex->Has("sphere") && ex->Get("sphere").IsObject()) {
-        Sphere s;
-        const Value& sv = ex->Get("sphere");
-        bool ok = get_vec3(sv, "center", &s.center) && get_float(sv, "radius", &s.radius) && s.radius > 0.f &&
-                  !mesh.positions.empty();
-        for (size_t i = 0; ok && i < mesh.positions.size(); ++i)
-          ok = std::abs(glm::length(mesh.positions[i] - s.center) - s.radius) <=
-               1e-4f * s.radius + 1e-6f * glm::length(s.center);
-        if (!ok) {
-          warn(where + ": its vertices no longer lie on the sphere its extras describe (edited?)");
-          continue;
-        }
-        scene.spheres.push_back(s);
-        replace[k] = {ShapeKind::sphere, int(scene.spheres.size()) - 1};
-      } else if (ex->Has("plane") && ex->Get("plane").IsObject()) {
-        Plane p;
-        const Value& pv = ex->Get("plane");
-        bool ok = get_vec3(pv, "normal", &p.normal) && get_float(pv, "offset", &p.offset) &&
-                  glm::length(p.normal) > 0.f && !mesh.positions.empty();
-        for (size_t i = 0; ok && i < mesh.positions.size(); ++i) {
-          const vec3& q = mesh.positions[i];
-          float scale = std::max({1.f, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
-          ok = std::abs(glm::dot(glm::normalize(p.normal), q) - p.offset / glm::length(p.normal)) <= 1e-5f * scale;
-        }
-        if (!ok) {
-          warn(where + ": its vertices no longer lie on the plane its extras describe (edited?)");
-          continue;
-        }
-        scene.planes.push_back(p);
-        replace[k] = {ShapeKind::plane, int(scene.planes.size()) - 1};
-      } else if (ex->Has("triangle")) {
-        if (mesh.positions.size() != 3 || mesh.indices.size() != 3) {
-          warn(where + ": its extras describe one triangle but it holds " + std::to_string(mesh.triangle_count()));
-          continue;
-        }
-        Triangle t;
-        for (int c = 0; c < 3; ++c) t.vertices[size_t(c)] = mesh.positions[mesh.indices[size_t(c)]];
-        scene.triangles.push_back(t);
-        replace[k] = {ShapeKind::triangle, int(scene.triangles.size()) - 1};
-      }
+      add_analytic_shape(in, *ex, k, where, replace);
     }
   }
-  if (replace.empty()) return;
+  return replace;
+}
+
+// The shape nodes of replaced meshes point at their analytic shapes, and the
+// tessellations no node uses any more are dropped.
+void replace_tessellations(const ShapeReplacements& replace, Scene& scene) {
   for (Node& n : scene.nodes) {
     if (n.kind != Node::Kind::shape || n.shape_kind != ShapeKind::mesh) continue;
     auto it = replace.find(n.shape);
@@ -336,7 +384,6 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     n.shape = it->second.second;
     n.name = n.shape_kind == ShapeKind::sphere ? "sphere" : n.shape_kind == ShapeKind::plane ? "plane" : "triangle";
   }
-  // Drop the tessellations no node uses any more.
   std::vector<int> remap(scene.meshes.size(), invalid);
   std::vector<Mesh> kept;
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
@@ -349,6 +396,21 @@ void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapp
     if (n.kind == Node::Kind::shape && n.shape_kind == ShapeKind::mesh && n.shape >= 0 &&
         size_t(n.shape) < remap.size())
       n.shape = remap[size_t(n.shape)];
+}
+
+}  // namespace
+
+void apply_gltf_rayform_extras(const tinygltf::Model& model, const GltfSceneMapping& map, Scene& scene,
+                               std::vector<std::string>* warnings) {
+  const ExtrasInput in{model, map, scene, warnings};
+  apply_texture_extras(in);
+  apply_background_extras(in);
+  apply_material_extras(in);
+  fold_untextured_copies(in);  // after the materials: it moves them
+  apply_camera_extras(in);
+  apply_light_extras(in);
+  const ShapeReplacements replace = add_analytic_shapes(in);
+  if (!replace.empty()) replace_tessellations(replace, scene);
 }
 
 }  // namespace rayform

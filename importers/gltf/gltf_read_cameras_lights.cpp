@@ -1,14 +1,14 @@
-// The glTF reader's cameras and KHR_lights_punctual lights (GltfSceneBuilder,
-// gltf_scene_builder.h), placed by the world transform of the node that names
+// The glTF reader's cameras and KHR_lights_punctual lights (GltfReader,
+// gltf_reader_internal.h), placed by the world transform of the node that names
 // them.
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <cmath>
 #include <numbers>
 
 namespace rayform::gltf_detail {
 
-void GltfSceneBuilder::place_camera(int c, const std::string& where, const mat4& world) {
+void GltfReader::place_camera(int c, const std::string& where, const mat4& world) {
   if (c < 0 || size_t(c) >= model_.cameras.size())
     fail(where + ".camera: camera " + std::to_string(c) + " does not exist (the file has " +
          std::to_string(model_.cameras.size()) + " cameras)");
@@ -53,7 +53,7 @@ void GltfSceneBuilder::place_camera(int c, const std::string& where, const mat4&
 // the colour unscaled: a 1 cd point light 1 m away lights like a 1 lx sun.
 // (Exporters turn watts into candela, e.g. Blender: W / (4 pi) * 683 / 100
 // ... such scenes can be bright; exposure is the renderer's business.)
-void GltfSceneBuilder::place_light(int li, const std::string& where, const mat4& world) {
+void GltfReader::place_light(int li, const std::string& where, const mat4& world) {
   if (li < 0 || size_t(li) >= model_.lights.size())
     fail(where + ".extensions.KHR_lights_punctual.light: light " + std::to_string(li) +
          " does not exist (the file has " + std::to_string(model_.lights.size()) + " lights)");

@@ -1,10 +1,10 @@
-// The glTF reader's loading (GltfSceneBuilder, gltf_scene_builder.h): the
+// The glTF reader's loading (GltfReader, gltf_reader_internal.h): the
 // file's bytes checked before tinygltf sees them (JSON or GLB, the GLB
 // container, JSON depth), tinygltf's load with file access and image decoding
 // of our own, its warnings passed on and its failures explained.
 #include "rayform/importers/gltf/gltf_file_access.h"
 #include "rayform/importers/gltf/gltf_images.h"
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@
 namespace rayform::gltf_detail {
 namespace fs = std::filesystem;
 
-void GltfSceneBuilder::load() {
+void GltfReader::load() {
   std::vector<unsigned char> bytes;
   {
     std::ifstream in(path_, std::ios::binary);
@@ -86,8 +86,8 @@ void GltfSceneBuilder::load() {
 }
 
 // Turns tinygltf's message into one that names the element at fault.
-void GltfSceneBuilder::diagnose_load_failure(const std::vector<unsigned char>& bytes, const GltfContainer& container,
-                                             bool glb, const std::string& err) {
+void GltfReader::diagnose_load_failure(const std::vector<unsigned char>& bytes, const GltfContainer& container,
+                                       bool glb, const std::string& err) {
   std::string e = gltf_one_line(err);
   if (glb && (e.find("Invalid glTF binary") != std::string::npos || e.find("Too short") != std::string::npos ||
               e.find("Chunk") != std::string::npos || e.find("Invalid magic") != std::string::npos))

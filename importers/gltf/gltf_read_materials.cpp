@@ -1,11 +1,11 @@
-// The glTF reader's materials and textures (GltfSceneBuilder,
-// gltf_scene_builder.h): glTF materials as Scene (Phong) materials through
+// The glTF reader's materials and textures (GltfReader,
+// gltf_reader_internal.h): glTF materials as Scene (Phong) materials through
 // gltf_material.h, base colour textures with their image source (core,
 // EXT_texture_webp, KHR_texture_basisu's fallback), sampler and
 // KHR_texture_transform.
 #include "rayform/importers/gltf/gltf_file_access.h"
 #include "rayform/importers/gltf/gltf_material.h"
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <cmath>
 #include <filesystem>
@@ -28,8 +28,7 @@ std::vector<float> numbers(const tinygltf::Value& v) {
 
 }  // namespace
 
-GltfSceneBuilder::TextureRef GltfSceneBuilder::texture_ref(const tinygltf::TextureInfo& info,
-                                                           const std::string& where) {
+GltfReader::TextureRef GltfReader::texture_ref(const tinygltf::TextureInfo& info, const std::string& where) {
   TextureRef r;
   r.texcoord = info.texCoord;
   if (r.texcoord < 0) fail(where + ".texCoord: " + std::to_string(r.texcoord) + " is negative");
@@ -68,7 +67,7 @@ GltfSceneBuilder::TextureRef GltfSceneBuilder::texture_ref(const tinygltf::Textu
 
 // Scene texture for glTF texture ti (sRGB colour data), or invalid when its
 // image could not be loaded (warned about).
-int GltfSceneBuilder::texture(int ti, const std::string& where) {
+int GltfReader::texture(int ti, const std::string& where) {
   if (ti < 0 || size_t(ti) >= model_.textures.size())
     fail(where + ".index: texture " + std::to_string(ti) + " does not exist (the file has " +
          std::to_string(model_.textures.size()) + " textures)");
@@ -125,7 +124,7 @@ int GltfSceneBuilder::texture(int ti, const std::string& where) {
 // source when it decoded, else the core `source`; KHR_texture_basisu's
 // KTX2 image cannot be decoded, so its core `source` stands in for it, and
 // without one the texture is an error. -1: no source at all.
-int GltfSceneBuilder::texture_source(const tinygltf::Texture& t, const std::string& tw) {
+int GltfReader::texture_source(const tinygltf::Texture& t, const std::string& tw) {
   auto image_index = [&](int i, const std::string& where) {
     if (i < 0 || size_t(i) >= model_.images.size())
       fail(where + ": image " + std::to_string(i) + " does not exist (the file has " +
@@ -163,7 +162,7 @@ int GltfSceneBuilder::texture_source(const tinygltf::Texture& t, const std::stri
   return t.source;
 }
 
-Texture::Wrap GltfSceneBuilder::wrap(int mode, const std::string& where) {
+Texture::Wrap GltfReader::wrap(int mode, const std::string& where) {
   switch (mode) {
     case TINYGLTF_TEXTURE_WRAP_REPEAT: return Texture::Wrap::repeat;
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Texture::Wrap::clamp;
@@ -174,7 +173,7 @@ Texture::Wrap GltfSceneBuilder::wrap(int mode, const std::string& where) {
 }
 
 // Scene material for glTF material gi (-1: the specification's default material).
-int GltfSceneBuilder::material(int gi, const std::string& where) {
+int GltfReader::material(int gi, const std::string& where) {
   if (gi == -1) {
     if (default_material_ == invalid) {
       Material m;

@@ -1,11 +1,11 @@
-// The glTF reader's meshes (GltfSceneBuilder, gltf_scene_builder.h): each
+// The glTF reader's meshes (GltfReader, gltf_reader_internal.h): each
 // glTF mesh's primitives as Scene meshes and shape nodes, once per morph
 // weights and skin; attributes from accessors or a KHR_draco_mesh_compression
 // stream, morph targets, linear blend skinning, and strips and fans as
 // triangle lists.
 #include "rayform/importers/gltf/gltf_compression.h"
 #include "rayform/importers/gltf/gltf_file_access.h"
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,15 +13,15 @@
 namespace rayform::gltf_detail {
 
 // A Draco-compressed primitive, decoded: attribute name -> index into mesh.attributes.
-struct GltfSceneBuilder::DracoPrimitive {
+struct GltfReader::DracoPrimitive {
   DracoMesh mesh;
   std::map<std::string, int> slots;
   int indices = -1;  // the primitive's index accessor (adapt_json_for_tinygltf moved it)
 };
 
 // KHR_draco_mesh_compression of `prim`, decoded; nullptr when it has none.
-std::unique_ptr<GltfSceneBuilder::DracoPrimitive> GltfSceneBuilder::decode_draco_primitive(
-    const tinygltf::Primitive& prim, const std::string& where) {
+std::unique_ptr<GltfReader::DracoPrimitive> GltfReader::decode_draco_primitive(const tinygltf::Primitive& prim,
+                                                                               const std::string& where) {
   auto it = prim.extensions.find("KHR_draco_mesh_compression");
   if (it == prim.extensions.end()) return nullptr;
   const std::string dw = where + ".extensions.KHR_draco_mesh_compression";
@@ -51,9 +51,9 @@ std::unique_ptr<GltfSceneBuilder::DracoPrimitive> GltfSceneBuilder::decode_draco
 // Attribute `name` of `prim` as floats: from the Draco mesh when it holds
 // the attribute, else from its accessor. Types and formats checked on the
 // accessor either way.
-GltfAccessors::Floats GltfSceneBuilder::attribute(const tinygltf::Primitive& prim, const DracoPrimitive* draco,
-                                                  const std::string& name, const std::string& where,
-                                                  std::initializer_list<int> types, uint32_t formats) {
+GltfAccessors::Floats GltfReader::attribute(const tinygltf::Primitive& prim, const DracoPrimitive* draco,
+                                            const std::string& name, const std::string& where,
+                                            std::initializer_list<int> types, uint32_t formats) {
   const int a = prim.attributes.at(name);
   const std::string aw = where + ".attributes." + name;
   if (!draco || !draco->slots.count(name)) return accessors_.read_floats(a, aw, types, formats);
@@ -75,7 +75,7 @@ GltfAccessors::Floats GltfSceneBuilder::attribute(const tinygltf::Primitive& pri
 }
 
 // How node `skinned_node` poses its skin: per joint, world(joint) x inverseBindMatrix.
-std::vector<mat4> GltfSceneBuilder::skin_joint_matrices(int skinned_node) {
+std::vector<mat4> GltfReader::skin_joint_matrices(int skinned_node) {
   const tinygltf::Node& n = model_.nodes[size_t(skinned_node)];
   const std::string sw = idx("skins", n.skin);
   if (n.skin < 0 || size_t(n.skin) >= model_.skins.size())
@@ -109,7 +109,7 @@ std::vector<mat4> GltfSceneBuilder::skin_joint_matrices(int skinned_node) {
 // The Scene meshes of glTF mesh `mi` at morph `weights`, posed by the skin
 // of node `skinned_node` (invalid: not skinned), as shape nodes; converted
 // once per combination.
-const std::vector<int>& GltfSceneBuilder::mesh_shapes(int mi, const std::vector<float>& weights, int skinned_node) {
+const std::vector<int>& GltfReader::mesh_shapes(int mi, const std::vector<float>& weights, int skinned_node) {
   MeshKey key{mi, skinned_node, weights};
   auto it = mesh_shapes_.find(key);
   if (it != mesh_shapes_.end()) return it->second;
@@ -140,9 +140,9 @@ const std::vector<int>& GltfSceneBuilder::mesh_shapes(int mi, const std::vector<
   return mesh_shapes_.emplace(std::move(key), std::move(shapes)).first->second;
 }
 
-Primitive GltfSceneBuilder::convert_primitive(const tinygltf::Primitive& prim, const std::string& where,
-                                              const std::string& name, const std::vector<float>& weights,
-                                              const std::vector<mat4>* joints) {
+Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const std::string& where,
+                                        const std::string& name, const std::vector<float>& weights,
+                                        const std::vector<mat4>* joints) {
   int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   switch (mode) {
     case TINYGLTF_MODE_TRIANGLES:
@@ -245,8 +245,8 @@ Primitive GltfSceneBuilder::convert_primitive(const tinygltf::Primitive& prim, c
 
 // Morph targets at `weights`: POSITION and NORMAL displaced by the
 // weighted sum of the targets' deltas (other target attributes are not used).
-void GltfSceneBuilder::apply_morph_targets(const tinygltf::Primitive& prim, const std::string& where,
-                                           const std::vector<float>& weights, Mesh& mesh) {
+void GltfReader::apply_morph_targets(const tinygltf::Primitive& prim, const std::string& where,
+                                     const std::vector<float>& weights, Mesh& mesh) {
   const size_t nv = mesh.positions.size();
   for (size_t t = 0; t < prim.targets.size(); ++t) {
     const float w = t < weights.size() ? weights[t] : 0.f;
@@ -269,8 +269,8 @@ void GltfSceneBuilder::apply_morph_targets(const tinygltf::Primitive& prim, cons
 // Linear blend skinning into world space: p' = sum_k w_k J_{j_k} p over
 // the sets JOINTS_n / WEIGHTS_n (weights renormalised to sum 1); normals by
 // the blended matrix's linear part (renormalised later).
-void GltfSceneBuilder::apply_skin(const tinygltf::Primitive& prim, const DracoPrimitive* draco,
-                                  const std::string& where, const std::vector<mat4>& joints, Mesh& mesh) {
+void GltfReader::apply_skin(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
+                            const std::vector<mat4>& joints, Mesh& mesh) {
   const size_t nv = mesh.positions.size();
   std::vector<mat4> blend(nv, mat4(0.f));
   std::vector<float> total(nv, 0.f);
@@ -305,8 +305,7 @@ void GltfSceneBuilder::apply_skin(const tinygltf::Primitive& prim, const DracoPr
 // Triangle lists per the specification's vertex order:
 //   strips: p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}; fans: p_i = {v_{i+1}, v_{i+2}, v_0}.
 // Strip and fan triangles that repeat a vertex (joins) are dropped.
-std::vector<uint32_t> GltfSceneBuilder::triangulate(const std::vector<uint32_t>& v, int mode,
-                                                    const std::string& where) {
+std::vector<uint32_t> GltfReader::triangulate(const std::vector<uint32_t>& v, int mode, const std::string& where) {
   std::vector<uint32_t> out;
   const size_t n = v.size();
   auto push = [&](uint32_t a, uint32_t b, uint32_t c, bool drop_degenerate) {

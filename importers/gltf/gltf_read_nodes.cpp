@@ -1,9 +1,9 @@
-// The glTF reader's node graph (GltfSceneBuilder, gltf_scene_builder.h): the
+// The glTF reader's node graph (GltfReader, gltf_reader_internal.h): the
 // scene's root nodes, the checks that the graph is a forest of trees, node
 // transforms (matrix or T R S), the walk that turns nodes into Scene nodes
 // (meshes, EXT_mesh_gpu_instancing, cameras and lights placed), and world
 // matrices for skins.
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -14,7 +14,7 @@
 namespace rayform::gltf_detail {
 
 // The nodes to start from, with how the file names them.
-std::vector<std::pair<int, std::string>> GltfSceneBuilder::root_nodes() {
+std::vector<std::pair<int, std::string>> GltfReader::root_nodes() {
   std::vector<std::pair<int, std::string>> out;
   int s = options_.scene >= 0 ? options_.scene : model_.defaultScene;
   if (options_.scene >= 0 && size_t(options_.scene) >= model_.scenes.size())
@@ -45,7 +45,7 @@ std::vector<std::pair<int, std::string>> GltfSceneBuilder::root_nodes() {
 // A node that is its own ancestor, found by one depth-first pass over the
 // graph from the roots, then from every node (an explicit stack: the graph
 // may be thousands of levels deep; convert_node refuses those).
-void GltfSceneBuilder::check_no_cycle(const std::vector<std::pair<int, std::string>>& roots) {
+void GltfReader::check_no_cycle(const std::vector<std::pair<int, std::string>>& roots) {
   enum : uint8_t { unseen, open, done };
   std::vector<uint8_t> state(model_.nodes.size(), unseen);
   std::vector<std::pair<int, size_t>> stack;  // node, next child to visit
@@ -81,7 +81,7 @@ void GltfSceneBuilder::check_no_cycle(const std::vector<std::pair<int, std::stri
 // two parents, and a scene lists root nodes, each once. A file that breaks
 // this is refused: drawing each path through a shared node would multiply
 // the shapes (40 levels of two parents: 2^40 of them).
-void GltfSceneBuilder::check_node_trees(const std::vector<std::pair<int, std::string>>& roots) {
+void GltfReader::check_node_trees(const std::vector<std::pair<int, std::string>>& roots) {
   check_no_cycle(roots);
   std::vector<int> parent(model_.nodes.size(), invalid);
   for (size_t p = 0; p < model_.nodes.size(); ++p)
@@ -103,7 +103,7 @@ void GltfSceneBuilder::check_node_trees(const std::vector<std::pair<int, std::st
   }
 }
 
-mat4 GltfSceneBuilder::node_matrix(const tinygltf::Node& n, const std::string& where) {
+mat4 GltfReader::node_matrix(const tinygltf::Node& n, const std::string& where) {
   auto check = [&](const std::vector<double>& v, size_t want, const char* name) {
     if (!v.empty() && v.size() != want)
       fail(where + "." + name + ": expected " + std::to_string(want) + " numbers, found " + std::to_string(v.size()));
@@ -133,7 +133,7 @@ mat4 GltfSceneBuilder::node_matrix(const tinygltf::Node& n, const std::string& w
   return m;
 }
 
-int GltfSceneBuilder::add_node(Node n) {
+int GltfReader::add_node(Node n) {
   scene_.nodes.push_back(std::move(n));
   return int(scene_.nodes.size()) - 1;
 }
@@ -141,7 +141,7 @@ int GltfSceneBuilder::add_node(Node n) {
 // `ref` is how the parent names the node, e.g. "nodes[0].children[2]".
 // `depth` is the node's depth in the Scene (the root group is 1); its mesh
 // primitives become shape nodes one level deeper, within max_node_depth.
-int GltfSceneBuilder::convert_node(int i, const std::string& ref, const mat4& parent_world, int depth) {
+int GltfReader::convert_node(int i, const std::string& ref, const mat4& parent_world, int depth) {
   if (depth + 1 > max_node_depth)
     fail(ref + ": the node hierarchy is too deep (a scene holds at most " + std::to_string(max_node_depth) +
          " levels)");
@@ -209,7 +209,7 @@ int GltfSceneBuilder::convert_node(int i, const std::string& ref, const mat4& pa
 
 // EXT_mesh_gpu_instancing: one matrix T R S per instance (each of the three
 // optional), applied before the node's transform.
-std::vector<mat4> GltfSceneBuilder::instance_matrices(const tinygltf::Value& e, const std::string& ew) {
+std::vector<mat4> GltfReader::instance_matrices(const tinygltf::Value& e, const std::string& ew) {
   if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject())
     fail(ew + ": expected an object with \"attributes\"");
   const tinygltf::Value& attributes = e.Get("attributes");
@@ -262,7 +262,7 @@ std::vector<mat4> GltfSceneBuilder::instance_matrices(const tinygltf::Value& e, 
 
 // Node i's world matrix through its (first) parents, whether or not it is in
 // the scene read; joints of skins need it.
-mat4 GltfSceneBuilder::node_world(int i) {
+mat4 GltfReader::node_world(int i) {
   if (parents_.empty()) {
     parents_.assign(model_.nodes.size(), invalid);
     for (size_t p = 0; p < model_.nodes.size(); ++p)

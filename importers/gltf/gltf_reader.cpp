@@ -1,10 +1,10 @@
-// read_gltf_scene: one GltfSceneBuilder (gltf_scene_builder.h) per file, and
-// its walk (build) in order; the asset version and extensions the file
+// read_gltf_scene: one GltfReader (gltf_reader_internal.h) per file, and
+// its walk (read) in order; the asset version and extensions the file
 // requires checked, those it uses reported, rayform's own extras applied last.
 #include "rayform/importers/gltf/gltf_reader.h"
 
 #include "rayform/importers/gltf/gltf_extras.h"
-#include "rayform/importers/gltf/gltf_scene_builder.h"
+#include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -47,7 +47,7 @@ const std::set<std::string>& supported_extensions() {
 
 }  // namespace
 
-Scene GltfSceneBuilder::build(std::vector<ExtensionUse>* extensions) {
+Scene GltfReader::read(std::vector<ExtensionUse>* extensions) {
   load();
   check_asset();
   scene_.source_path = path_;
@@ -84,7 +84,7 @@ Scene GltfSceneBuilder::build(std::vector<ExtensionUse>* extensions) {
   return std::move(scene_);
 }
 
-void GltfSceneBuilder::check_asset() {
+void GltfReader::check_asset() {
   const std::string& v = model_.asset.version;
   if (v.rfind("2.", 0) != 0) fail("asset.version is '" + v + "': only glTF 2.0 is supported");
   if (!model_.asset.minVersion.empty() && model_.asset.minVersion != "2.0")
@@ -102,7 +102,7 @@ void GltfSceneBuilder::check_asset() {
 // while reading keep their entry; the rest of the supported ones were read
 // as they are; unsupported ones are ignored. One warning lists what was
 // approximated or ignored.
-void GltfSceneBuilder::report_extensions() {
+void GltfReader::report_extensions() {
   using Support = ExtensionUse::Support;
   for (const std::string& ext : model_.extensionsUsed) {
     bool seen =
@@ -121,8 +121,7 @@ void GltfSceneBuilder::report_extensions() {
   if (!ignored.empty()) warn("extensions ignored: " + ignored);
 }
 
-void GltfSceneBuilder::use_extension(const std::string& name, ExtensionUse::Support support,
-                                     const std::string& detail) {
+void GltfReader::use_extension(const std::string& name, ExtensionUse::Support support, const std::string& detail) {
   for (ExtensionUse& u : extensions_)
     if (u.name == name) return;
   extensions_.push_back({name, support, detail});
@@ -131,7 +130,7 @@ void GltfSceneBuilder::use_extension(const std::string& name, ExtensionUse::Supp
 // rayform's own extras, written by the writer (gltf_writer.h): what glTF cannot say (analytic spheres and planes, Phong
 // values, the course camera, ...) travels in "rayform" extras; apply_gltf_rayform_extras (gltf_extras.h) checks each
 // against the file's data and restores it.
-void GltfSceneBuilder::apply_rayform_extras() {
+void GltfReader::apply_rayform_extras() {
   GltfSceneMapping map;
   map.scene = options_.scene >= 0 ? options_.scene : std::max(model_.defaultScene, 0);
   map.mesh_primitives = extras_primitives_;
@@ -146,7 +145,7 @@ void GltfSceneBuilder::apply_rayform_extras() {
 
 Scene read_gltf_scene(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings,
                       std::vector<ExtensionUse>* extensions) {
-  return gltf_detail::GltfSceneBuilder(path, options, warnings).build(extensions);
+  return gltf_detail::GltfReader(path, options, warnings).read(extensions);
 }
 
 }  // namespace rayform

@@ -1,8 +1,8 @@
-// The glTF writer's cameras, lights and background (GltfBuilder,
-// gltf_builder.h): each camera and KHR_lights_punctual light on a node of its
+// The glTF writer's cameras, lights and background (GltfWriter,
+// gltf_writer_internal.h): each camera and KHR_lights_punctual light on a node of its
 // own, what glTF cannot say about it in its extras; the background in the
 // scene's extras.
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/importers/shape_tessellation.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -33,14 +33,14 @@ mat3 look_basis(vec3 dir, vec3 up) {
 
 }  // namespace
 
-std::string GltfBuilder::unique_name(const std::string& wanted, std::set<std::string>& used) {
+std::string GltfWriter::unique_name(const std::string& wanted, std::set<std::string>& used) {
   std::string n = wanted;
   for (int k = 2; used.count(n); ++k) n = wanted + "_" + std::to_string(k);
   used.insert(n);
   return n;
 }
 
-int GltfBuilder::add_camera(int ci) {
+int GltfWriter::add_camera(int ci) {
   const Camera& c = scene_.cameras[size_t(ci)];
   tinygltf::Camera gc;
   gc.name = unique_name(c.name.empty() ? "camera" : c.name, camera_names_);
@@ -82,7 +82,7 @@ int GltfBuilder::add_camera(int ci) {
   return add_node(std::move(n));
 }
 
-int GltfBuilder::add_light(int li) {
+int GltfWriter::add_light(int li) {
   const Light& l = scene_.lights[size_t(li)];
   tinygltf::Light gl;
   gl.name = unique_name(l.name.empty() ? "light" : l.name, light_names_);
@@ -136,7 +136,7 @@ int GltfBuilder::add_light(int li) {
   return add_node(std::move(n));
 }
 
-Value GltfBuilder::scene_extras() {
+Value GltfWriter::scene_extras() {
   const Background& b = scene_.background;
   Value::Object bg;
   bg["color"] = vec_value(b.color);

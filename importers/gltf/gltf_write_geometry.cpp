@@ -1,9 +1,9 @@
-// The glTF writer's geometry (GltfBuilder, gltf_builder.h): the binary
+// The glTF writer's geometry (GltfWriter, gltf_writer_internal.h): the binary
 // buffer's views and accessors, meshes' vertices and faces (per material)
 // stored once by content, spheres, planes and triangles tessellated with
 // their exact form in extras, and glTF meshes shared where the same shapes
 // recur.
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/base/error.h"
 #include "rayform/importers/shape_tessellation.h"
 
@@ -19,7 +19,7 @@ constexpr int element_buffer = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
 
 }  // namespace
 
-int GltfBuilder::add_view(const void* data, size_t bytes, int target) {
+int GltfWriter::add_view(const void* data, size_t bytes, int target) {
   while (buffer_.size() % 4) buffer_.push_back(0);
   tinygltf::BufferView v;
   v.buffer = 0;
@@ -32,8 +32,8 @@ int GltfBuilder::add_view(const void* data, size_t bytes, int target) {
   return int(model_.bufferViews.size()) - 1;
 }
 
-int GltfBuilder::add_accessor(int view, int component, size_t count, int type, std::vector<double> min,
-                              std::vector<double> max) {
+int GltfWriter::add_accessor(int view, int component, size_t count, int type, std::vector<double> min,
+                             std::vector<double> max) {
   tinygltf::Accessor a;
   a.bufferView = view;
   a.byteOffset = 0;
@@ -46,7 +46,7 @@ int GltfBuilder::add_accessor(int view, int component, size_t count, int type, s
   return int(model_.accessors.size()) - 1;
 }
 
-int GltfBuilder::add_vec3s(const std::vector<vec3>& v, bool bounds) {
+int GltfWriter::add_vec3s(const std::vector<vec3>& v, bool bounds) {
   std::vector<double> lo, hi;
   if (bounds) {
     vec3 a(infinity), b(-infinity);
@@ -63,7 +63,7 @@ int GltfBuilder::add_vec3s(const std::vector<vec3>& v, bool bounds) {
 
 // The accessors of a mesh (restricted to the faces of one material when
 // `only_material` is not invalid and the mesh has face materials).
-GltfBuilder::Geometry GltfBuilder::mesh_geometry(const Mesh& m, int only_material) {
+GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material) {
   std::vector<uint32_t> corners;
   if (only_material == invalid || m.face_materials.empty()) {
     corners = m.indices;
@@ -76,7 +76,7 @@ GltfBuilder::Geometry GltfBuilder::mesh_geometry(const Mesh& m, int only_materia
   std::vector<int64_t> remap(m.positions.size(), -1);
   std::vector<uint32_t> used;
   for (uint32_t& c : corners) {
-    if (c >= m.positions.size()) throw Error(path_ + ": mesh '" + m.name + "' has an index out of range");
+    if (c >= m.positions.size()) throw Error(context_.path + ": mesh '" + m.name + "' has an index out of range");
     if (remap[c] < 0) {
       remap[c] = int64_t(used.size());
       used.push_back(c);
@@ -134,7 +134,7 @@ GltfBuilder::Geometry GltfBuilder::mesh_geometry(const Mesh& m, int only_materia
   return g;
 }
 
-tinygltf::Primitive GltfBuilder::primitive(const Geometry& g, int material) {
+tinygltf::Primitive GltfWriter::primitive(const Geometry& g, int material) {
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
   p.indices = g.indices;
@@ -148,12 +148,12 @@ tinygltf::Primitive GltfBuilder::primitive(const Geometry& g, int material) {
   return p;
 }
 
-int GltfBuilder::gltf_material(int m) const {
+int GltfWriter::gltf_material(int m) const {
   return m >= 0 && m < int(scene_.materials.size()) ? m : -1;  // -1: glTF's default material
 }
 
 // The primitives of one shape (several for a mesh with face materials).
-std::vector<tinygltf::Primitive> GltfBuilder::shape_primitives(const PrimitiveRef& r) {
+std::vector<tinygltf::Primitive> GltfWriter::shape_primitives(const PrimitiveRef& r) {
   std::vector<tinygltf::Primitive> out;
   switch (r.kind) {
     case ShapeKind::sphere: {
@@ -228,7 +228,7 @@ std::vector<tinygltf::Primitive> GltfBuilder::shape_primitives(const PrimitiveRe
 
 // One glTF mesh for a list of shapes, reused when the same list recurs
 // (planes are placed by their world matrix, so they are never shared).
-int GltfBuilder::add_mesh(const std::vector<PrimitiveRef>& refs, const std::string& name) {
+int GltfWriter::add_mesh(const std::vector<PrimitiveRef>& refs, const std::string& name) {
   bool shareable =
       std::none_of(refs.begin(), refs.end(), [](const PrimitiveRef& r) { return r.kind == ShapeKind::plane; });
   if (shareable) {

@@ -1,8 +1,8 @@
-// The glTF writer's materials and textures (GltfBuilder, gltf_builder.h):
+// The glTF writer's materials and textures (GltfWriter, gltf_writer_internal.h):
 // Phong materials as metallic-roughness (gltf_material.h) with the Phong
 // values in extras, an untextured copy for shapes without uvs, textures as
 // PNG or JPEG images (beside the file or in its buffer) with their samplers.
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/importers/gltf/gltf_material.h"
 #include "rayform/base/error.h"
 #include "rayform/base/file_extension.h"
@@ -13,7 +13,7 @@
 
 namespace rayform::gltf_detail {
 
-int GltfBuilder::add_sampler(const Texture& t) {
+int GltfWriter::add_sampler(const Texture& t) {
   auto wrap = [](Texture::Wrap w) {
     switch (w) {
       case Texture::Wrap::clamp: return TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
@@ -37,7 +37,7 @@ int GltfBuilder::add_sampler(const Texture& t) {
 }
 
 // glTF texture of Scene texture ti (written once).
-int GltfBuilder::add_texture(int ti) {
+int GltfWriter::add_texture(int ti) {
   if (ti < 0 || ti >= int(scene_.textures.size())) return -1;
   auto it = textures_.find(ti);
   if (it != textures_.end()) return it->second;
@@ -47,7 +47,8 @@ int GltfBuilder::add_texture(int ti) {
   try {
     bytes = texture_file(t, {"png", "jpg"}, &ext);
   } catch (const Error& e) {
-    note(std::string("texture '") + t.name + "' cannot be read (" + e.what() + "); materials using it are untextured");
+    context_.note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+                  "); materials using it are untextured");
     textures_[ti] = -1;
     return -1;
   }
@@ -63,12 +64,12 @@ int GltfBuilder::add_texture(int ti) {
     img.bufferView = add_view(bytes.data(), bytes.size(), 0);
     // tinygltf writes "target" only for the two buffer targets: none here.
   } else {
-    std::string file = safe_file_name(stem_ + "_" + base) + "." + ext;
+    std::string file = safe_file_name(context_.stem + "_" + base) + "." + ext;
     for (int k = 2; used_files_.count(file); ++k)
-      file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
+      file = safe_file_name(context_.stem + "_" + base + "_" + std::to_string(k)) + "." + ext;
     used_files_.insert(file);
     img.uri = side_uri(file);
-    out_.add(out_.side_path(file), std::move(bytes));
+    context_.out.add(context_.out.side_path(file), std::move(bytes));
   }
   model_.images.push_back(std::move(img));
   tinygltf::Texture gt;
@@ -91,7 +92,7 @@ int GltfBuilder::add_texture(int ti) {
 // glTF material of Scene material mi; `textured` false: the copy for
 // primitives without uvs (glTF requires TEXCOORD_0 wherever a material has a
 // texture), which shows the diffuse colour as the renderer does without uvs.
-tinygltf::Material GltfBuilder::make_material(int mi, bool textured) {
+tinygltf::Material GltfWriter::make_material(int mi, bool textured) {
   const Material& m = scene_.materials[size_t(mi)];
   tinygltf::Material gm;
   gm.name = textured ? m.name : m.name + " (no uvs)";
@@ -171,10 +172,10 @@ tinygltf::Material GltfBuilder::make_material(int mi, bool textured) {
   return gm;
 }
 
-void GltfBuilder::add_material(int mi) { model_.materials.push_back(make_material(mi, true)); }
+void GltfWriter::add_material(int mi) { model_.materials.push_back(make_material(mi, true)); }
 
 // The untextured copy of glTF material gi (made once).
-int GltfBuilder::untextured(int gi) {
+int GltfWriter::untextured(int gi) {
   auto it = untextured_.find(gi);
   if (it != untextured_.end()) return it->second;
   model_.materials.push_back(make_material(gi, false));
@@ -182,7 +183,7 @@ int GltfBuilder::untextured(int gi) {
   return untextured_[gi] = int(model_.materials.size()) - 1;
 }
 
-void GltfBuilder::use_extension(const std::string& e) {
+void GltfWriter::use_extension(const std::string& e) {
   if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), e) == model_.extensionsUsed.end())
     model_.extensionsUsed.push_back(e);
 }

@@ -1,7 +1,7 @@
-// The glTF writer's node tree (GltfBuilder, gltf_builder.h): one glTF node
+// The glTF writer's node tree (GltfWriter, gltf_writer_internal.h): one glTF node
 // per group or transform node, leading shape children gathered as its mesh;
 // a matrix that one glTF node cannot hold (a shear) split into two that can.
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/base/error.h"
 
 #include <algorithm>
@@ -88,14 +88,14 @@ std::vector<double> matrix_values(const mat4& m) {
 
 }  // namespace
 
-int GltfBuilder::add_node(tinygltf::Node n) {
+int GltfWriter::add_node(tinygltf::Node n) {
   model_.nodes.push_back(std::move(n));
   return int(model_.nodes.size()) - 1;
 }
 
 // Sets the node's transform: nothing for the identity, `matrix` when glTF
 // can hold it, else a second node below (returned; -1 when not needed).
-int GltfBuilder::set_matrix(tinygltf::Node& n, const mat4& m) {
+int GltfWriter::set_matrix(tinygltf::Node& n, const mat4& m) {
   if (is_identity(m)) return -1;
   if (is_trs(m)) {
     n.matrix = matrix_values(m);
@@ -112,7 +112,7 @@ int GltfBuilder::set_matrix(tinygltf::Node& n, const mat4& m) {
 }
 
 // The nodes of the scene's top level.
-std::vector<int> GltfBuilder::root_nodes(const mat4& world) {
+std::vector<int> GltfWriter::root_nodes(const mat4& world) {
   const Node& root = scene_.nodes[size_t(scene_.root)];
   bool plain = root.kind == Node::Kind::group || (root.kind == Node::Kind::transform && is_identity(root.local));
   // Leading shapes need the root's own node (write_node gathers them).
@@ -129,10 +129,11 @@ std::vector<int> GltfBuilder::root_nodes(const mat4& world) {
   return {write_node(scene_.root, world)};
 }
 
-int GltfBuilder::write_node(int index, const mat4& parent_world) {
+int GltfWriter::write_node(int index, const mat4& parent_world) {
   if (index < 0 || size_t(index) >= scene_.nodes.size())
-    throw Error(path_ + ": scene node " + std::to_string(index) + " does not exist");
-  if (on_path_[size_t(index)]) throw Error(path_ + ": scene node " + std::to_string(index) + " is its own ancestor");
+    throw Error(context_.path + ": scene node " + std::to_string(index) + " does not exist");
+  if (on_path_[size_t(index)])
+    throw Error(context_.path + ": scene node " + std::to_string(index) + " is its own ancestor");
   on_path_[size_t(index)] = 1;
   const Node& n = scene_.nodes[size_t(index)];
   tinygltf::Node g;

@@ -1,7 +1,7 @@
-// The glTF writer's JSON values (gltf_builder.h): floats written as the
+// The glTF writer's JSON values (gltf_writer_internal.h): floats written as the
 // double of their shortest decimal text, vectors of them, and rayform's own
 // extras under the key "rayform".
-#include "rayform/importers/gltf/gltf_builder.h"
+#include "rayform/importers/gltf/gltf_writer_internal.h"
 #include "rayform/importers/text_format.h"
 
 #include <cstdlib>

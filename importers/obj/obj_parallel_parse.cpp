@@ -255,47 +255,13 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
   }
 }
 
-}  // namespace
-
-bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
-                       const WorkShare* share) {
-  const std::vector<size_t> starts = chunk_starts(text, std::max<size_t>(chunk_bytes, 1));
-  const size_t n = starts.size() - 1;
-  std::vector<ChunkScan> scans(n);
-  if (share && share->shared()) {
-    if (!scan_shared(*share, text, starts, &scans)) return false;
-  } else {
-    tbb::parallel_for(size_t(0), n, [&](size_t k) { scans[k] = obj::scan_chunk(text, starts[k], starts[k + 1]); });
-    if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
-  }
-  const std::vector<std::string> prefixes = chunk_prefixes(scans);
-
-  // Each chunk with its polygons left whole (split below, once every position is known).
-  std::vector<ChunkResult> results(n);
-  const std::function<void(size_t)> parse_chunk = [&](size_t k) {
-    ChunkResult& r = results[k];
-    TextStreamBuffer buffer(prefixes[k], text.substr(starts[k], starts[k + 1] - starts[k]));
-    std::istream in(&buffer);
-    std::unique_ptr<tinyobj::MaterialReader> reader = readers();
-    std::vector<tinyobj::material_t> materials;
-    std::string warn, err;
-    r.ok = tinyobj::LoadObj(&r.attrib, &r.shapes, &materials, &warn, &err, &in, reader.get(),
-                            /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
-           keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
-  };
-  // Shared and without polygons (whose splitting changes the arrays), the
-  // other parts' chunks are read straight into the joined arrays below.
-  const bool in_place = share && share->shared() && std::all_of(scans.begin(), scans.end(), [](const ChunkScan& s) {
-                          return s.polygon_vertices_before.empty();
-                        });
-  std::vector<std::vector<std::byte>> kept;  // the bytes in_place reads from
-  if (share && share->shared()) parse_shared(*share, parse_chunk, &results, in_place, &kept);
-  else tbb::parallel_for(size_t(0), n, parse_chunk);
-  if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
-
-  ObjParse& o = *out;
-  o = ObjParse{};
+// The chunks' vertex arrays (and their warnings) concatenated into `o`, the
+// colours kept only when every chunk has them; returns the first vertex of
+// each chunk (0-based), then the count.
+std::vector<size_t> join_vertex_arrays(const std::vector<ChunkResult>& results, const std::vector<ChunkScan>& scans,
+                                       ObjParse& o) {
   bool all_colors = true;
+  const size_t n = results.size();
   std::vector<size_t> first_vertex(n + 1, 0);  // the first vertex of each chunk (0-based), then the count
   {
     size_t vertices = 0, normals = 0, texcoords = 0;
@@ -319,16 +285,31 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     first_vertex[k + 1] = first_vertex[k] + scans[k].vertex_lines;
   }
   if (!all_colors) o.attrib.colors.clear();
-  // LoadObj warns of a face index past the last vertex (the reader makes that an error).
-  const size_t vertex_count = first_vertex[n];
-  std::vector<int> large_polygon_vertices;  // of polygons of five or more corners
+  return first_vertex;
+}
+
+// Whether every face index of every chunk names a vertex of the `vertex_count`
+// joined ones.
+bool face_indices_in_range(const std::vector<ChunkResult>& results, size_t vertex_count) {
+  const size_t n = results.size();
   std::vector<uint8_t> indices_ok(n, 1);
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     for (const tinyobj::shape_t& s : results[k].shapes)
       for (const tinyobj::index_t& ix : s.mesh.indices)
         if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) indices_ok[k] = 0;
   });
-  if (std::find(indices_ok.begin(), indices_ok.end(), 0) != indices_ok.end()) return false;
+  return std::find(indices_ok.begin(), indices_ok.end(), 0) == indices_ok.end();
+}
+
+// The chunks' polygons split into triangles as LoadObj splits them, which
+// needs the text of the `v` lines of their corners (`positions`: the joined
+// vertex arrays); false where a polygon names a vertex declared after it or
+// cannot be split so.
+bool split_polygons(std::string_view text, const std::vector<size_t>& starts, const std::vector<ChunkScan>& scans,
+                    const std::vector<size_t>& first_vertex, const std::vector<tinyobj::real_t>& positions,
+                    std::vector<ChunkResult>& results) {
+  const size_t n = results.size();
+  std::vector<int> large_polygon_vertices;  // of polygons of five or more corners
   for (size_t k = 0; k < n; ++k) {
     for (const tinyobj::shape_t& s : results[k].shapes) {
       if (scans[k].polygon_vertices_before.empty()) continue;
@@ -356,10 +337,15 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     if (scans[k].polygon_vertices_before.empty()) return;
     for (tinyobj::shape_t& s : results[k].shapes)
-      if (!split_polygons_like_loadobj(&s.mesh, o.attrib.vertices, vertex_line)) split_ok[k] = 0;
+      if (!split_polygons_like_loadobj(&s.mesh, positions, vertex_line)) split_ok[k] = 0;
   });
-  if (std::find(split_ok.begin(), split_ok.end(), 0) != split_ok.end()) return false;
+  return std::find(split_ok.begin(), split_ok.end(), 0) == split_ok.end();
+}
 
+// The shapes of every chunk joined into `o`, a `g`/`o` section that runs
+// across chunk ends made one shape.
+void join_sections(const std::vector<ChunkScan>& scans, std::vector<ChunkResult>& results, ObjParse& o) {
+  const size_t n = results.size();
   // The pieces of each section (g/o lines before the piece's chunk, plus its
   // place in the chunk) joined; each shape's arrays allocated once at their
   // full size (growing them piece by piece costs page faults on every copy).
@@ -422,6 +408,55 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     }
     first = last;
   }
+}
+
+}  // namespace
+
+bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
+                       const WorkShare* share) {
+  const std::vector<size_t> starts = chunk_starts(text, std::max<size_t>(chunk_bytes, 1));
+  const size_t n = starts.size() - 1;
+  std::vector<ChunkScan> scans(n);
+  if (share && share->shared()) {
+    if (!scan_shared(*share, text, starts, &scans)) return false;
+  } else {
+    tbb::parallel_for(size_t(0), n, [&](size_t k) { scans[k] = obj::scan_chunk(text, starts[k], starts[k + 1]); });
+    if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
+  }
+  const std::vector<std::string> prefixes = chunk_prefixes(scans);
+
+  // Each chunk with its polygons left whole (split below, once every position is known).
+  std::vector<ChunkResult> results(n);
+  const std::function<void(size_t)> parse_chunk = [&](size_t k) {
+    ChunkResult& r = results[k];
+    TextStreamBuffer buffer(prefixes[k], text.substr(starts[k], starts[k + 1] - starts[k]));
+    std::istream in(&buffer);
+    std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    r.ok = tinyobj::LoadObj(&r.attrib, &r.shapes, &materials, &warn, &err, &in, reader.get(),
+                            /*triangulate*/ false, /*default_vcols_fallback*/ false) &&
+           keep_warnings(warn, &r.warn) && shapes_match_scan(r, scans[k]);
+  };
+  // Shared and without polygons (whose splitting changes the arrays), the
+  // other parts' chunks are read straight into the joined arrays below.
+  const bool in_place = share && share->shared() && std::all_of(scans.begin(), scans.end(), [](const ChunkScan& s) {
+                          return s.polygon_vertices_before.empty();
+                        });
+  std::vector<std::vector<std::byte>> kept;  // the bytes in_place reads from
+  if (share && share->shared()) parse_shared(*share, parse_chunk, &results, in_place, &kept);
+  else tbb::parallel_for(size_t(0), n, parse_chunk);
+  if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
+
+  ObjParse& o = *out;
+  o = ObjParse{};
+  const std::vector<size_t> first_vertex = join_vertex_arrays(results, scans, o);
+  // LoadObj warns of a face index past the last vertex (the reader makes that an error).
+  const size_t vertex_count = first_vertex[n];
+  if (!face_indices_in_range(results, vertex_count)) return false;
+  if (!split_polygons(text, starts, scans, first_vertex, o.attrib.vertices, results)) return false;
+
+  join_sections(scans, results, o);
   if (in_place) {
     // The index check above saw only this part's chunks.
     std::vector<uint8_t> ok(o.shapes.size(), 1);

@@ -39,7 +39,7 @@
 
 namespace rayform {
 
-// What tinyobj::LoadObj gives (its materials aside: see ObjSceneBuilder).
+// What tinyobj::LoadObj gives (its materials aside: see ObjReader).
 struct ObjParse {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;

@@ -47,9 +47,10 @@ constexpr float default_grey = 0.8f;
 // Smaller files are parsed in one piece: threads do not pay there.
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
 // Chunks of a parallel parse per thread: lines of faces parse slower than
-// lines of vertices, and small chunks even that out (2 threads, medians of 7
-// runs, parse of the 2.4 MB bunny: 4 a thread 19.5 ms, 16 15.3, 32 19.5; of
-// the 40 MB 1M torus: 0.318 s load with 4, 0.303 with 16).
+// lines of vertices, so equal shares of the bytes are unequal shares of the
+// work; cutting each thread's share into several chunks lets a thread that
+// is done take the next chunk and evens the work out, while each chunk adds
+// its own LoadObj call and join (docs/performance.md, the parallel parse).
 constexpr size_t chunks_per_thread = 16;
 // A parse shared among processes (ObjReadOptions::share) cuts the text into
 // this many chunks per process: a number that does not depend on a
@@ -64,12 +65,12 @@ std::string trim(std::string s) {
   return s.substr(b, e - b + 1);
 }
 
-class ObjSceneBuilder {
+class ObjReader {
  public:
-  ObjSceneBuilder(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
+  ObjReader(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
       : path_(path), options_(options), warnings_(warnings), dir_(fs::path(path).parent_path()) {}
 
-  Scene build() {
+  Scene read() {
     file_ = FileBytes(path_, "OBJ file");
     text_ = file_.view();
     load_material_libraries();
@@ -580,7 +581,7 @@ class ObjSceneBuilder {
 }  // namespace
 
 Scene read_obj_scene(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings) {
-  return ObjSceneBuilder(path, options, warnings).build();
+  return ObjReader(path, options, warnings).read();
 }
 
 }  // namespace rayform

@@ -1,6 +1,6 @@
 #include "rayform/importers/obj/obj_writer.h"
 
-#include "rayform/image/output_files.h"
+#include "rayform/importers/writer_context.h"
 #include "rayform/importers/scene_writer.h"
 #include "rayform/base/error.h"
 #include "rayform/importers/scene_flatten.h"
@@ -28,14 +28,11 @@ std::array<uint32_t, N> bits(const float* f) {
   return k;
 }
 
-class ObjBuilder {
+class ObjWriter {
  public:
-  ObjBuilder(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
-             std::vector<std::string>* messages)
-      : scene_(scene), path_(path), options_(options), messages_(messages), out_(path, options.side_folder) {
-    protect_scene_inputs(scene, out_);
-    name_ = fs::path(path).filename().string();
-    stem_ = fs::path(path).stem().string();
+  ObjWriter(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
+            std::vector<std::string>* messages)
+      : scene_(scene), options_(options), context_(scene, path, options.side_folder, messages) {
     extent_ = scene_extent(scene);
     for (const Mesh& m : scene.meshes) any_colors_ |= !m.colors.empty();
   }
@@ -49,22 +46,18 @@ class ObjBuilder {
     obj << "# written by rayform convert";
     if (!scene_.source_path.empty()) obj << " from " << fs::path(scene_.source_path).filename().string();
     obj << "\n";
-    const std::string mtl = safe_file_name(stem_) + ".mtl";
+    const std::string mtl = safe_file_name(context_.stem) + ".mtl";
     for (size_t i = 0; i < scene_.materials.size(); ++i) used_materials_.insert(int(i));  // unused ones too
-    if (!used_materials_.empty()) obj << "mtllib " << out_.side_reference(mtl) << "\n";
+    if (!used_materials_.empty()) obj << "mtllib " << context_.out.side_reference(mtl) << "\n";
     obj << body_.str();
-    out_.add(path_, obj.str());
+    context_.out.add(context_.path, obj.str());
     // The textures are beside the .mtl, which names them.
-    if (!used_materials_.empty()) out_.add(out_.side_path(mtl), write_mtl());
+    if (!used_materials_.empty()) context_.out.add(context_.out.side_path(mtl), write_mtl());
     report();
-    return SaveResult{out_.commit(), stored_triangles_};
+    return SaveResult{context_.out.commit(), stored_triangles_};
   }
 
  private:
-  void note(const std::string& m) {
-    if (messages_) messages_->push_back(name_ + ": " + m);
-  }
-
   // ---- materials -----------------------------------------------------------------
 
   void material_names() {
@@ -104,14 +97,14 @@ class ObjBuilder {
     try {
       std::string ext;
       std::vector<uint8_t> bytes = rayform::texture_file(t, {"png", "jpg", "bmp", "tga"}, &ext);
-      file = safe_file_name(stem_ + "_" + base) + "." + ext;
+      file = safe_file_name(context_.stem + "_" + base) + "." + ext;
       for (int k = 2; used_files_.count(file); ++k)
-        file = safe_file_name(stem_ + "_" + base + "_" + std::to_string(k)) + "." + ext;
+        file = safe_file_name(context_.stem + "_" + base + "_" + std::to_string(k)) + "." + ext;
       used_files_.insert(file);
-      out_.add(out_.side_path(file), std::move(bytes));
+      context_.out.add(context_.out.side_path(file), std::move(bytes));
     } catch (const Error& e) {
-      note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
-           "); materials using it are untextured");
+      context_.note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
+                    "); materials using it are untextured");
     }
     if (t.lookup == Texture::Lookup::course) course_lookup_.insert(t.name);
     if (t.filter == Texture::Filter::nearest) nearest_.insert(t.name);
@@ -195,7 +188,7 @@ class ObjBuilder {
       }
       uint32_t idx[3] = {m.indices[3 * f], m.indices[3 * f + 1], m.indices[3 * f + 2]};
       for (uint32_t i : idx)
-        if (i >= m.positions.size()) throw Error(path_ + ": mesh '" + m.name + "' has an index out of range");
+        if (i >= m.positions.size()) throw Error(context_.path + ": mesh '" + m.name + "' has an index out of range");
       vec3 face_n(0.f);
       if (!has_n) {
         vec3 c = glm::cross(m.positions[idx[1]] - m.positions[idx[0]], m.positions[idx[2]] - m.positions[idx[0]]);
@@ -317,8 +310,8 @@ class ObjBuilder {
   // its other children.
   void visit(int i, const mat4& parent, bool top) {
     if (i < 0 || size_t(i) >= scene_.nodes.size())
-      throw Error(path_ + ": scene node " + std::to_string(i) + " does not exist");
-    if (on_path_[size_t(i)]) throw Error(path_ + ": scene node " + std::to_string(i) + " is its own ancestor");
+      throw Error(context_.path + ": scene node " + std::to_string(i) + " does not exist");
+    if (on_path_[size_t(i)]) throw Error(context_.path + ": scene node " + std::to_string(i) + " is its own ancestor");
     on_path_[size_t(i)] = 1;
     const Node& n = scene_.nodes[size_t(i)];
     const mat4 world = n.kind == Node::Kind::group ? parent : parent * n.local;
@@ -350,60 +343,61 @@ class ObjBuilder {
 
   void report() {
     if (!options_.flattened && (baked_transforms_ || nested_))
-      note(
+      context_.note(
           "OBJ has no transforms and no node hierarchy: transforms baked into the vertices, each node's shapes "
           "written as one 'o' section (" +
           std::to_string(sections_) + " section(s))");
     if (spheres_)
-      note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
-           " segments; OBJ has no spheres)");
+      context_.note(std::to_string(spheres_) + " sphere(s) tessellated (" + std::to_string(options_.sphere_segments) +
+                    " segments; OBJ has no spheres)");
     if (planes_)
-      note(std::to_string(planes_) + " plane(s) written as square quads of half-size " + format_float(plane_half_) +
-           " around the scene (OBJ has no infinite planes)");
+      context_.note(std::to_string(planes_) + " plane(s) written as square quads of half-size " +
+                    format_float(plane_half_) + " around the scene (OBJ has no infinite planes)");
     if (zero_normals_)
-      note(std::to_string(zero_normals_) +
-           " zero-length normal(s) written as 'vn 0 0 0': OBJ readers make normals "
-           "from the faces there");
-    if (faceted_) note("meshes without normals (faceted) written with each face's normal as vn");
+      context_.note(std::to_string(zero_normals_) +
+                    " zero-length normal(s) written as 'vn 0 0 0': OBJ readers make normals "
+                    "from the faces there");
+    if (faceted_) context_.note("meshes without normals (faceted) written with each face's normal as vn");
     if (!scene_.cameras.empty())
-      note(std::to_string(scene_.cameras.size()) + " camera(s) dropped (OBJ has no cameras)");
+      context_.note(std::to_string(scene_.cameras.size()) + " camera(s) dropped (OBJ has no cameras)");
     if (!scene_.lights.empty()) {
       int point = 0;
       for (const Light& l : scene_.lights) point += l.kind != Light::Kind::directional;
-      note(std::to_string(scene_.lights.size()) + " light(s) dropped (" + std::to_string(point) +
-           " point or spot; OBJ has no lights)");
+      context_.note(std::to_string(scene_.lights.size()) + " light(s) dropped (" + std::to_string(point) +
+                    " point or spot; OBJ has no lights)");
     }
     const Background& b = scene_.background;
     if (b.color != Background{}.color || b.ambient != vec3(0.f) || b.cube_map[0] != invalid)
-      note("background colour, ambient light and cube map dropped (OBJ has no background)");
+      context_.note("background colour, ambient light and cube map dropped (OBJ has no background)");
     if (!replaced_.empty())
-      note("materials " + quoted_list(replaced_) +
-           ": their texture replaces the colour (course), written as Kd 1 1 1 "
-           "(the diffuse colour, used where a shape has no uvs, is dropped)");
-    if (!baked_.empty()) note("materials " + quoted_list(baked_) + ": rotated uv transform baked into the vt values");
+      context_.note("materials " + quoted_list(replaced_) +
+                    ": their texture replaces the colour (course), written as Kd 1 1 1 "
+                    "(the diffuse colour, used where a shape has no uvs, is dropped)");
+    if (!baked_.empty())
+      context_.note("materials " + quoted_list(baked_) + ": rotated uv transform baked into the vt values");
     if (!ns_zero_.empty())
-      note("materials " + quoted_list(ns_zero_) +
-           ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
-    if (!cutouts_.empty()) note("materials " + quoted_list(cutouts_) + ": alpha cut-outs dropped");
+      context_.note("materials " + quoted_list(ns_zero_) +
+                    ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
+    if (!cutouts_.empty()) context_.note("materials " + quoted_list(cutouts_) + ": alpha cut-outs dropped");
     if (!single_sided_.empty())
-      note("materials " + quoted_list(single_sided_) + ": single-sided becomes double-sided (OBJ has no such flag)");
+      context_.note("materials " + quoted_list(single_sided_) +
+                    ": single-sided becomes double-sided (OBJ has no such flag)");
     if (!one_side_lit_.empty())
-      note("materials " + quoted_list(one_side_lit_) +
-           ": back faces will be shaded with their normals reversed towards " +
-           "the viewer, as OBJ materials are (the source shades them with the normal as given)");
+      context_.note("materials " + quoted_list(one_side_lit_) +
+                    ": back faces will be shaded with their normals reversed towards " +
+                    "the viewer, as OBJ materials are (the source shades them with the normal as given)");
     if (!course_lookup_.empty())
-      note("textures " + quoted_list(course_lookup_) +
-           ": the course's texel centres (on whole numbers) are not expressible; "
-           "OBJ readers sample half a texel off");
-    if (!nearest_.empty()) note("textures " + quoted_list(nearest_) + ": nearest filtering dropped");
-    if (!mirror_.empty()) note("textures " + quoted_list(mirror_) + ": mirrored or mixed wrap modes become repeat");
+      context_.note("textures " + quoted_list(course_lookup_) +
+                    ": the course's texel centres (on whole numbers) are not expressible; "
+                    "OBJ readers sample half a texel off");
+    if (!nearest_.empty()) context_.note("textures " + quoted_list(nearest_) + ": nearest filtering dropped");
+    if (!mirror_.empty())
+      context_.note("textures " + quoted_list(mirror_) + ": mirrored or mixed wrap modes become repeat");
   }
 
   const Scene& scene_;
-  std::string path_, name_, stem_;
   ObjWriteOptions options_;
-  std::vector<std::string>* messages_;
-  OutputFiles out_;
+  WriterContext context_;  // the output's path and names, its files, the messages
   Bounds3 extent_;
   std::ostringstream body_;
   std::vector<uint8_t> on_path_;
@@ -430,7 +424,7 @@ class ObjBuilder {
 SaveResult write_obj_scene(const Scene& scene, const std::string& path, const ObjWriteOptions& options,
                            std::vector<std::string>* messages) {
   require_scene_root(scene, path);
-  return ObjBuilder(scene, path, options, messages).write();
+  return ObjWriter(scene, path, options, messages).write();
 }
 
 }  // namespace rayform

@@ -32,11 +32,11 @@ constexpr int kFloat = 5126, kByte = 5120, kUByte = 5121, kShort = 5122, kUShort
 
 // A glTF file under construction: one binary buffer, views and accessors
 // appended as they are made; written as .glb (buffer 0 in the BIN chunk).
-struct GltfBuilder {
+struct GltfDraft {
   json j = json::object();
   std::vector<uint8_t> bin;
 
-  GltfBuilder() {
+  GltfDraft() {
     j["asset"] = {{"version", "2.0"}};
     j["buffers"] = json::array({json::object()});
     j["bufferViews"] = json::array();
@@ -106,12 +106,12 @@ class GltfExtensions : public ::testing::Test {
         .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     return (dir_ / name).string();
   }
-  Scene load(const GltfBuilder& b, std::vector<std::string>* warnings = nullptr,
+  Scene load(const GltfDraft& b, std::vector<std::string>* warnings = nullptr,
              std::vector<ExtensionUse>* extensions = nullptr) {
     return read_gltf_scene(write("t.glb", b.glb()), {}, warnings, extensions);
   }
   // The error of loading `b`, with the file name cut off; "" when it loads.
-  std::string error(const GltfBuilder& b) {
+  std::string error(const GltfDraft& b) {
     try {
       load(b);
     } catch (const Error& e) {
@@ -146,7 +146,7 @@ TEST_F(GltfExtensions, QuantizedAttributesOfEveryComponentTypeAreDequantised) {
                         {kByte, true, 127.f}, {kUByte, true, 255.f}, {kShort, true, 32767.f}, {kUShort, true, 65535.f}};
   for (const Case& c : cases) {
     SCOPED_TRACE("componentType " + std::to_string(c.component_type) + (c.normalized ? " normalized" : ""));
-    GltfBuilder b;
+    GltfDraft b;
     const int size = c.component_type == kByte || c.component_type == kUByte ? 1 : 2;
     // Positions (0,0,0) (1,0,0) (0,1,0) in the file's units, padded to 4 bytes per vertex.
     std::vector<uint8_t> pos(3 * 4 * size_t(size), 0);
@@ -176,7 +176,7 @@ TEST_F(GltfExtensions, QuantizedAttributesOfEveryComponentTypeAreDequantised) {
 }
 
 TEST_F(GltfExtensions, QuantizedNormalsAndTexcoords) {
-  GltfBuilder b;
+  GltfDraft b;
   const int pos = b.triangle_positions();
   // BYTE normalized normals (padded to 4 bytes): -127 is -1.
   const int nrm = b.accessor(std::vector<int8_t>{0, 0, 127, 0, 0, 0, -127, 0, 127, 0, 0, 0}, kByte, "VEC3", 3, true);
@@ -197,14 +197,14 @@ TEST_F(GltfExtensions, QuantizedNormalsAndTexcoords) {
 }
 
 TEST_F(GltfExtensions, AttributeFormatsOutsideTheSpecificationAreRefused) {
-  GltfBuilder b;
+  GltfDraft b;
   const int pos = b.accessor(std::vector<uint32_t>{0, 0, 0, 1, 0, 0, 0, 1, 0}, kUInt, "VEC3", 3);
   b.one_mesh({{"POSITION", pos}});
   EXPECT_NE(error(b).find("meshes[0].primitives[0].attributes.POSITION (accessors[0]): accessor is VEC3 of "
                           "UNSIGNED_INT, expected VEC3 of FLOAT, normalized UNSIGNED_BYTE"),
             std::string::npos)
       << error(b);
-  GltfBuilder n;
+  GltfDraft n;
   const int p2 = n.triangle_positions();
   const int nrm = n.accessor(std::vector<uint8_t>(12, 0), kUByte, "VEC3", 3, true);  // unsigned normals: not allowed
   n.one_mesh({{"POSITION", p2}, {"NORMAL", nrm}});
@@ -217,8 +217,8 @@ TEST_F(GltfExtensions, AttributeFormatsOutsideTheSpecificationAreRefused) {
 
 // A .glb whose positions (ATTRIBUTES) and indices (TRIANGLES) are meshopt
 // compressed in buffer 0, with buffer 1 the fallback that has no data.
-GltfBuilder meshopt_file(std::vector<float> positions, std::vector<uint32_t> indices) {
-  GltfBuilder b;
+GltfDraft meshopt_file(std::vector<float> positions, std::vector<uint32_t> indices) {
+  GltfDraft b;
   const size_t vertices = positions.size() / 3;
   std::vector<uint8_t> vbuf(meshopt_encodeVertexBufferBound(vertices, 12));
   vbuf.resize(meshopt_encodeVertexBuffer(vbuf.data(), vbuf.size(), positions.data(), vertices, 12));
@@ -282,21 +282,21 @@ TEST_F(GltfExtensions, MeshoptCompressedViewsWithADatalessFallbackBuffer) {
 }
 
 TEST_F(GltfExtensions, CorruptMeshoptStreamsAreErrorsNamingTheView) {
-  GltfBuilder b = meshopt_file({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
-  GltfBuilder truncated = b;
+  GltfDraft b = meshopt_file({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
+  GltfDraft truncated = b;
   truncated.j["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["byteLength"] = 3;
   EXPECT_NE(error(truncated).find("bufferViews[2].extensions.EXT_meshopt_compression"), std::string::npos)
       << error(truncated);
-  GltfBuilder outside = b;
+  GltfDraft outside = b;
   outside.j["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["byteOffset"] = 100000;
   EXPECT_NE(error(outside).find("bufferViews[2].extensions.EXT_meshopt_compression: bytes 100000 to"),
             std::string::npos)
       << error(outside);
-  GltfBuilder mode = b;
+  GltfDraft mode = b;
   mode.j["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["mode"] = "SHUFFLE";
   EXPECT_NE(error(mode).find("bufferViews[2].extensions.EXT_meshopt_compression.mode"), std::string::npos)
       << error(mode);
-  GltfBuilder longer = b;  // the view claims more bytes than the stream decodes to
+  GltfDraft longer = b;  // the view claims more bytes than the stream decodes to
   longer.j["bufferViews"][2]["byteLength"] = 1000;
   EXPECT_NE(error(longer).find("bufferViews[2].byteLength: 1000 is more than the 36 bytes"), std::string::npos)
       << error(longer);
@@ -305,7 +305,7 @@ TEST_F(GltfExtensions, CorruptMeshoptStreamsAreErrorsNamingTheView) {
 // ---- KHR_draco_mesh_compression (bad streams) ---------------------------------------------------
 
 TEST_F(GltfExtensions, CorruptDracoStreamIsAnErrorNamingThePrimitive) {
-  GltfBuilder b;
+  GltfDraft b;
   const std::vector<uint8_t> garbage = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, 0, 0, 9, 9, 9, 9};
   const int view = b.view(garbage.data(), garbage.size());
   b.j["accessors"].push_back({{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"}});
@@ -314,7 +314,7 @@ TEST_F(GltfExtensions, CorruptDracoStreamIsAnErrorNamingThePrimitive) {
       {"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", {{"POSITION", 0}}}}}};
   EXPECT_NE(error(b).find("meshes[0].primitives[0].extensions.KHR_draco_mesh_compression"), std::string::npos)
       << error(b);
-  GltfBuilder missing = b;  // an attribute the primitive has no accessor for
+  GltfDraft missing = b;  // an attribute the primitive has no accessor for
   missing.j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["NORMAL"] = 1;
   EXPECT_NE(error(missing).find("KHR_draco_mesh_compression.attributes.NORMAL: the primitive has no accessor"),
             std::string::npos)
@@ -323,8 +323,8 @@ TEST_F(GltfExtensions, CorruptDracoStreamIsAnErrorNamingThePrimitive) {
 
 // ---- EXT_mesh_gpu_instancing ----------------------------------------------------------------------
 
-GltfBuilder instanced(size_t count) {
-  GltfBuilder b;
+GltfDraft instanced(size_t count) {
+  GltfDraft b;
   const int pos = b.triangle_positions();
   std::vector<float> t, s;
   for (size_t i = 0; i < count; ++i) {
@@ -368,18 +368,18 @@ TEST_F(GltfExtensions, TenThousandInstancesCostInstanceRecordsNotMeshes) {
 }
 
 TEST_F(GltfExtensions, BadInstancingAttributesAreErrors) {
-  GltfBuilder count = instanced(3);
+  GltfDraft count = instanced(3);
   count.j["accessors"][2]["count"] = 2;  // SCALE: 2 of 3
   EXPECT_NE(error(count).find("nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.SCALE: 2 instances, but "
                               "TRANSLATION has 3"),
             std::string::npos)
       << error(count);
-  GltfBuilder nan = instanced(2);
+  GltfDraft nan = instanced(2);
   const float q = std::nanf("");
   std::memcpy(&nan.bin[size_t(nan.j["bufferViews"][1]["byteOffset"])], &q, 4);
   EXPECT_NE(error(nan).find("EXT_mesh_gpu_instancing.attributes.TRANSLATION: a value is not finite"), std::string::npos)
       << error(nan);
-  GltfBuilder none = instanced(2);
+  GltfDraft none = instanced(2);
   none.j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = json::object();
   EXPECT_NE(error(none).find("nodes[0].extensions.EXT_mesh_gpu_instancing: expected an object with \"attributes\""),
             std::string::npos)
@@ -389,7 +389,7 @@ TEST_F(GltfExtensions, BadInstancingAttributesAreErrors) {
 // ---- morph targets and skins --------------------------------------------------------------------
 
 TEST_F(GltfExtensions, MorphTargetsAtTheDefaultWeights) {
-  GltfBuilder b;
+  GltfDraft b;
   const int pos = b.triangle_positions();
   const int delta = b.accessor(std::vector<float>{0, 0, 2, 0, 0, 4, 0, 0, 0}, kFloat, "VEC3", 3);
   b.one_mesh({{"POSITION", pos}});
@@ -404,7 +404,7 @@ TEST_F(GltfExtensions, MorphTargetsAtTheDefaultWeights) {
 }
 
 TEST_F(GltfExtensions, SkinnedMeshesArePosedByTheirJoints) {
-  GltfBuilder b;
+  GltfDraft b;
   const int pos = b.triangle_positions();
   const int joints = b.accessor(std::vector<uint8_t>{0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0}, kUByte, "VEC4", 3);
   const int weights = b.accessor(std::vector<float>{1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0}, kFloat, "VEC4", 3);
@@ -426,7 +426,7 @@ TEST_F(GltfExtensions, SkinnedMeshesArePosedByTheirJoints) {
   EXPECT_EQ(p[0], vec3(0, 0, 10));  // joint 0: T(0,0,10)
   EXPECT_EQ(p[1], vec3(1, 1, 5));   // half T(0,0,10), half T(0,2,1) T(0,0,-1) = T(0,2,0)
   EXPECT_EQ(p[2], vec3(0, 3, 0));   // joint 1: T(0,2,0)
-  GltfBuilder bad = b;
+  GltfDraft bad = b;
   bad.j["skins"][0]["joints"] = {1};  // joint index 1 now out of range
   EXPECT_NE(error(bad).find("attributes.JOINTS_0: vertex 1 names joint 1 but the skin has 1"), std::string::npos)
       << error(bad);
@@ -435,8 +435,8 @@ TEST_F(GltfExtensions, SkinnedMeshesArePosedByTheirJoints) {
 // ---- textures: EXT_texture_webp, KHR_texture_basisu -----------------------------------------------
 
 // A textured triangle whose texture 0 is given by `texture` over the images `images`.
-GltfBuilder textured(json texture, json images) {
-  GltfBuilder b;
+GltfDraft textured(json texture, json images) {
+  GltfDraft b;
   const int pos = b.triangle_positions();
   const int uv = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 3);
   b.one_mesh({{"POSITION", pos}, {"TEXCOORD_0", uv}});
@@ -459,7 +459,7 @@ std::vector<uint8_t> webp_2x2() {
 }
 
 TEST_F(GltfExtensions, WebpTexturesDecodeThroughLibwebp) {
-  GltfBuilder b = textured({{"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}, json::array());
+  GltfDraft b = textured({{"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}, json::array());
   const std::vector<uint8_t> webp = webp_2x2();
   b.j["images"] = json::array({{{"bufferView", b.view(webp.data(), webp.size())}, {"mimeType", "image/webp"}}});
   b.j["extensionsUsed"] = {"EXT_texture_webp"};
@@ -476,7 +476,7 @@ TEST_F(GltfExtensions, BrokenWebpFallsBackToTheCoreSourceOrIsAnError) {
   webp.resize(webp.size() / 2);  // truncated
   const std::string png =
       "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
-  GltfBuilder b = textured({{"source", 1}, {"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}, json::array());
+  GltfDraft b = textured({{"source", 1}, {"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}}, json::array());
   b.j["images"] = json::array({{{"bufferView", b.view(webp.data(), webp.size())}, {"mimeType", "image/webp"}},
                                {{"uri", "data:image/png;base64," + png}}});
   std::vector<std::string> warnings;
@@ -497,7 +497,7 @@ TEST_F(GltfExtensions, BrokenWebpFallsBackToTheCoreSourceOrIsAnError) {
 TEST_F(GltfExtensions, ImagesOverTheTexelLimitAreDroppedWithAWarning) {
   const std::string png =
       "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
-  GltfBuilder b = textured({{"source", 0}}, json::array());
+  GltfDraft b = textured({{"source", 0}}, json::array());
   b.j["images"] = json::array({{{"uri", "data:image/png;base64," + png}}});
   GltfReadOptions options;
   options.limits.texture_texels = 4;
@@ -518,7 +518,7 @@ TEST_F(GltfExtensions, BasisuUsesTheFallbackSourceOrIsAnErrorNamingTheTexture) {
   const std::vector<uint8_t> ktx2 = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n', 0, 0, 0, 0};
   const std::string png =
       "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAAE0lEQVR4nGP4z8DwHwyBNAg0AABJSQl4KKDbdwAAAABJRU5ErkJggg==";
-  GltfBuilder b = textured({{"source", 1}, {"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}}, json::array());
+  GltfDraft b = textured({{"source", 1}, {"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}}, json::array());
   b.j["images"] = json::array({{{"bufferView", b.view(ktx2.data(), ktx2.size())}, {"mimeType", "image/ktx2"}},
                                {{"uri", "data:image/png;base64," + png}}});
   b.j["extensionsUsed"] = {"KHR_texture_basisu"};
@@ -537,7 +537,7 @@ TEST_F(GltfExtensions, BasisuUsesTheFallbackSourceOrIsAnErrorNamingTheTexture) {
 // ---- KHR_materials_* ------------------------------------------------------------------------------
 
 TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
-  GltfBuilder b;
+  GltfDraft b;
   b.one_mesh({{"POSITION", b.triangle_positions()}});
   json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}};
   b.j["materials"] = json::array({
@@ -587,7 +587,7 @@ TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
   EXPECT_EQ(again.materials[1].specular, s.materials[1].specular);
   EXPECT_FLOAT_EQ(again.materials[2].refraction_index, 1.3f);
   EXPECT_EQ(again.materials[3].diffuse, s.materials[3].diffuse);
-  GltfBuilder bad = b;
+  GltfDraft bad = b;
   bad.j["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 0.5;
   EXPECT_NE(error(bad).find("materials[1].extensions.KHR_materials_ior.ior: 0.500000 is neither 0 nor a number >= 1"),
             std::string::npos)

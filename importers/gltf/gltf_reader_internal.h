@@ -1,7 +1,7 @@
-// The glTF reader's builder, one per file read (read_gltf_scene), shared by
-// the reader's parts; internal to importers/gltf/, never installed. Its
-// members are defined one concept per file:
-//   gltf_reader.cpp               the walk (build): asset version, extensions, rayform extras
+// The glTF reader, one per file read (read_gltf_scene), shared by the
+// reader's parts; internal to importers/gltf/, never installed. Its members
+// are defined one concept per file:
+//   gltf_reader.cpp               the walk (read): asset version, extensions, rayform extras
 //   gltf_read_file.cpp            the file through tinygltf, its failures explained
 //   gltf_read_nodes.cpp           scene roots, the node graph's checks, node transforms, instancing
 //   gltf_read_cameras_lights.cpp  cameras and KHR_lights_punctual lights
@@ -37,12 +37,12 @@ struct Primitive {
   int material = invalid;  // Scene material
 };
 
-class GltfSceneBuilder {
+class GltfReader {
  public:
-  GltfSceneBuilder(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings)
+  GltfReader(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings)
       : path_(path), options_(options), warnings_(warnings), accessors_(model_, path, options.limits.vertices) {}
 
-  Scene build(std::vector<ExtensionUse>* extensions);
+  Scene read(std::vector<ExtensionUse>* extensions);
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw Error(path_ + ": " + what); }

@@ -1,6 +1,6 @@
-// The glTF writer's builder, one per file written (write_gltf_scene), shared
-// by the writer's parts; internal to importers/gltf/, never installed. Its
-// members are defined one concept per file:
+// The glTF writer, one per file written (write_gltf_scene), shared by the
+// writer's parts; internal to importers/gltf/, never installed. Its members
+// are defined one concept per file:
 //   gltf_writer.cpp               the walk (write) in order, and the messages on what was approximated
 //   gltf_write_values.cpp         JSON values: floats by their shortest text, rayform extras
 //   gltf_write_geometry.cpp       buffers, accessors, shapes as meshes and primitives
@@ -12,7 +12,7 @@
 
 #include "rayform/geometry/bounds.h"
 #include "rayform/importers/gltf/gltf_writer.h"
-#include "rayform/image/output_files.h"
+#include "rayform/importers/writer_context.h"
 #include "rayform/scene/scene.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
@@ -46,7 +46,7 @@ std::vector<double> nice_vector(std::initializer_list<float> fs);
 // extras = { "rayform": obj }
 Value rayform_extras(Value::Object obj);
 
-// ---- the builder ----------------------------------------------------------------
+// ---- the writer -----------------------------------------------------------------
 
 // One primitive to write: a shape with its material (and, for planes, the
 // object-to-world matrix that places the quad).
@@ -60,16 +60,15 @@ struct PrimitiveRef {
   }
 };
 
-class GltfBuilder {
+class GltfWriter {
  public:
-  GltfBuilder(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
-              std::vector<std::string>* messages);
+  GltfWriter(const Scene& scene, const std::string& path, const GltfWriteOptions& options,
+             std::vector<std::string>* messages);
 
   SaveResult write();
 
  private:
   // ---- gltf_writer.cpp ----------------------------------------------------------
-  void note(const std::string& m);
   void report();
 
   // ---- gltf_write_geometry.cpp --------------------------------------------------
@@ -114,10 +113,8 @@ class GltfBuilder {
   SaveResult save();
 
   const Scene& scene_;
-  std::string path_, name_, stem_;
   GltfWriteOptions options_;
-  std::vector<std::string>* messages_;
-  OutputFiles out_;
+  WriterContext context_;  // the output's path and names, its files, the messages
   tinygltf::Model model_;
   std::vector<uint8_t> buffer_;
   Bounds3 extent_;
