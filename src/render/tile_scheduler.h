@@ -1,5 +1,5 @@
 // The tile scheduler: which tiles a render pass renders, on which threads,
-// and the progress it reports. Every tile over oneTBB (one task per tile), or
+// and the progress it reports. Every tile over oneTBB (ranges split down to one tile), or
 // the tiles a NextTile hook hands out (render_tiles_from: processes sharing a
 // frame); with RenderOptions::threads 1 all on the calling thread, else on at
 // most that many threads (base/thread_limit.h) while the scheduler lives.
