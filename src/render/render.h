@@ -1,9 +1,14 @@
-// The render loop: the image is split into tiles rendered in parallel (oneTBB);
-// each pixel is traced independently, so the result does not depend on the
-// number of threads.
+// Rendering an image: the parameters, the result, and the entry points. The
+// image is split into tiles (tile_grid.h) rendered in parallel
+// (tile_scheduler.h); each pixel is traced independently, so the result does
+// not depend on the number of threads. The loop's parts: the sampler
+// (sampling.h, adaptive_sampling.h, grid_filter.h), the integrator
+// (whitted_integrator.h), the film (film.h), the per-tile loops
+// (tile_renderer.h); render.cpp picks one of eight compiled paths.
 #pragma once
 
 #include "rayform/image/image.h"
+#include "rayform/render/adaptive_sampling.h"
 #include "rayform/render/grid_filter.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/sampling.h"
@@ -44,16 +49,9 @@ struct RenderOptions {
   int spp = 1;                    // samples per pixel (1: the pixel centre only)
   PixelFilter filter = PixelFilter::box;
   PixelSampler sampler = PixelSampler::stratified;  // random: also for spp 1 (no centre ray)
-  // Adaptive sampling when set: each pixel takes rounds of stratified
-  // samples (progressive_pixel_point, box filter: 4, then up to 16, then 16
-  // more each, adaptive_round_end) until the standard error of its samples'
-  // mean, per channel and in the output encoding (sRGB-encoded values 0..1
-  // for ColorFormat::srgb8, else linear), is below target_error, or max_spp
-  // samples are taken. A pixel whose first round settled goes on when one of
-  // its 8 neighbours' first rounds says an edge is near (edges that cross a
-  // pixel by less than a stratum): to 32 samples when a neighbour's did not
-  // settle, to 16 when a neighbour's mean differs from its own by more than
-  // target_error. spp is then not used. Must be > 0.
+  // Adaptive sampling when set (adaptive_sampling.h): rounds of samples per
+  // pixel until the standard error of their mean is below target_error (the
+  // box filter; spp is then not used). Must be > 0.
   std::optional<float> target_error;
   int max_spp = 256;  // adaptive sampling's most samples per pixel (>= 1)
   // The 2012 assignment 5's 3x3-sample anti-aliasing (grid_filter.h); spp,
@@ -87,25 +85,6 @@ struct RenderResult {
   std::vector<float> coverage;  // 0..1 per pixel (AlphaMode, above), when alpha is not none
   uint64_t samples = 0;         // camera samples traced for colour (all pixels)
 };
-
-// Adaptive sampling's rounds, runs of the pixel's progressive (0,2)-sequence
-// that keep it stratified: a first round of 4 samples (one in each cell of a
-// 2x2 grid of the pixel), a second of 12 that completes the first 16 (one in
-// each cell of a 4x4 grid), then rounds of 16 (each again one per 4x4 cell);
-// fewer when max_spp is smaller.
-inline constexpr int adaptive_first_round_samples = 4;
-inline constexpr int adaptive_round_samples = 16;
-// The samples a pixel whose first round settled takes when a neighbour's
-// first round did not: the first 16 and one round more.
-inline constexpr int adaptive_neighbour_samples = 2 * adaptive_round_samples;
-// The samples after which a round ends, from the samples taken so far: 4,
-// 16, 32, 48, ... (not more than max_spp).
-inline constexpr int adaptive_round_end(int taken, int max_spp) {
-  const int end = taken < adaptive_first_round_samples ? adaptive_first_round_samples
-                  : taken < adaptive_round_samples     ? adaptive_round_samples
-                                                       : taken + adaptive_round_samples;
-  return end < max_spp ? end : max_spp;
-}
 
 // What is wrong with `options`, "" when nothing: the one check of the
 // parameters a caller sets (image size >= 1 x 1, spp >= 1, bounces >= 0,
