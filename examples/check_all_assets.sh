@@ -11,7 +11,9 @@
 #            over the 59 files rendered (covered: 7.4 % to 82.1 %); an unlit
 #            model (before the light rig: the duck in black) is near 0.
 # A file the example cannot render fails, unless `rayform render` refuses it
-# too: it is then listed as skipped, with the CLI's error.
+# too: it is then listed as skipped, with the CLI's error. A file listed in
+# `known` below fails for a reason an open issue names: it is reported, and
+# fails the test only once it passes (then take it off the list).
 # Environment: EXAMPLE (the example's binary), RAYFORM_BIN, RAYFORM_SHARED.
 set -uo pipefail
 : "${EXAMPLE:?EXAMPLE must name rayform_example_render}"
@@ -26,7 +28,11 @@ command -v python3 >/dev/null || { echo "FAIL: python3 not found"; exit 1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
 min_covered=1 min_lit=20
-n=0 failn=0 skipn=0
+# Known failures, each with its reason and the issue that will fix it.
+declare -A known=(
+  ["assets/khronos/TwoSidedPlane/glTF/TwoSidedPlane.gltf"]="a plane in the XZ plane: the default camera, on the +z side, sees it edge-on (issue 30: flat models)"
+)
+n=0 failn=0 skipn=0 knownn=0
 while IFS= read -r -d '' file; do
   n=$((n + 1))
   rel=${file#"$shared"/}
@@ -62,11 +68,17 @@ EOF
   line="$rel: ${w}x${h}, covered ${covered} %, lit mean ${lit}"
   if [ "$w" != 512 ] || [ "$h" != 512 ] ||
      ! awk -v c="$covered" -v l="$lit" -v mc=$min_covered -v ml=$min_lit 'BEGIN { exit !(c >= mc && l >= ml) }'; then
-    echo "FAIL $line (want 512x512, covered >= $min_covered %, lit mean >= $min_lit)"; failn=$((failn + 1))
+    if [ -n "${known[$rel]:-}" ]; then
+      echo "KNOWN $line: ${known[$rel]}"; knownn=$((knownn + 1))
+    else
+      echo "FAIL $line (want 512x512, covered >= $min_covered %, lit mean >= $min_lit)"; failn=$((failn + 1))
+    fi
+  elif [ -n "${known[$rel]:-}" ]; then
+    echo "FAIL $line: listed as a known failure (${known[$rel]}) but passes: take it off the list"; failn=$((failn + 1))
   else
     echo "PASS $line"
   fi
 done < <(find "$shared/assets" -type f \( -iname '*.obj' -o -iname '*.gltf' -o -iname '*.glb' \) -print0 | sort -z)
 
-echo "$((n - failn - skipn)) of $n files give a lit picture, $skipn skipped (refused by the CLI too), $failn failed"
+echo "$((n - failn - skipn - knownn)) of $n files give a lit picture, $skipn skipped (refused by the CLI too), $knownn known failures, $failn failed"
 [ "$n" -gt 0 ] && [ $failn -eq 0 ]

@@ -1,4 +1,4 @@
-// Refraction with the medium each ray carries (render.cpp, Tracer::secondary):
+// Refraction with the medium each ray carries (whitted_integrator.h, WhittedIntegrator::secondary):
 // rays through nested and touching glass spheres and a closed glass mesh, at
 // every incidence including grazing ones that end in total internal
 // reflection. Glass here absorbs nothing (diffuse 0, specularColor 1), so each
