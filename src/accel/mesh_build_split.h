@@ -168,7 +168,7 @@ class RangeSplitter {
   }
 
  private:
-  static constexpr uint32_t parallel_bin_threshold = 1u << 15;
+  static constexpr uint32_t parallel_bin_threshold = 1u << 15;  // larger ranges are binned by parallel tasks
   // Beyond this depth, splits by count (each child at most half) keep the
   // tree within sah_depth_limit + 33 levels, which bounds the traversal stack.
   static constexpr int sah_depth_limit = 32;
