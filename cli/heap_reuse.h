@@ -2,10 +2,9 @@
 // frees large arrays in waves (the OBJ parse's arrays, then the BVH build's,
 // then the images); glibc's defaults give blocks of 128 KiB and more their own
 // mappings, returned to the system when freed, and trim the heap's free top
-// beyond 128 KiB, so each wave faults in fresh pages (the kernel clears each
-// one; about 2 microseconds a 4 KiB page on the machines measured). Kept, the
-// next wave reuses them. Measured (docs/performance.md): the 1M-triangle torus's
-// load and prepare on one thread 67.9k -> 52.4k page faults, 0.76 -> 0.73 s.
+// beyond 128 KiB, so each wave would fault in fresh pages, each one cleared by
+// the kernel at its first touch. Kept for reuse, the freed pages serve the
+// next wave without those faults (docs/performance.md).
 #pragma once
 
 namespace rayform::cli {

@@ -33,11 +33,14 @@ endif()
 # (some include tiny_gltf.h, tiny_obj_loader.h or oneTBB: private dependencies
 # a consumer does not have), the traversal kernels that mesh_accel_traverse.cpp
 # includes once per instruction set, and the mesh BVH builder's internals
-# (oneTBB too) that mesh_accel_build.cpp and mesh_accel_share.cpp share. No
-# installed header includes them
+# (mesh_accel_builder.h and the mesh_build_*.h it includes; oneTBB too) that
+# mesh_accel_build.cpp and mesh_accel_share.cpp share. No installed header
+# includes them
 # (tests/package compiles every installed header with nothing but
 # rayform::core's usage requirements).
-set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_accel_kernel.h src/accel/mesh_accel_packet8.h
+set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_build_flatten.h src/accel/mesh_build_refs.h
+                            src/accel/mesh_build_split.h src/accel/mesh_build_tree.h
+                            src/accel/mesh_accel_kernel.h src/accel/mesh_accel_packet8.h
                             importers/gltf/gltf_accessors.h importers/gltf/gltf_writer_internal.h
                             importers/gltf/gltf_file_access.h importers/gltf/gltf_reader_internal.h
                             importers/obj/mtl_library.h importers/obj/obj_parallel_parse.h

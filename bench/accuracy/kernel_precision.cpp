@@ -1,13 +1,16 @@
 // Float against double intersection kernels: run time and error.
 //
 // The three kernels of src/geometry (watertight triangle, Ray Tracing Gems
-// sphere, plane with double dot products) are copied here as templates on the
-// scalar type T, line for line; the float instantiation is checked bit for bit
-// against the production headers on every ray below (any difference is
+// sphere, plane with double dot products) as templates on the scalar type T:
+// the triangle test's shear and edge functions are the production header's
+// own template (shear_triangle); its ray constants (make_tri_ray, as
+// make_triangle_ray), the rest of that test and the sphere and plane kernels
+// are copied here, line for line. The float instantiation is checked bit for
+// bit against the production headers on every ray below (any difference is
 // reported and makes the program fail), so the double instantiation is the
 // same algorithm with every float step done in double. (The production
-// headers stay float-only: the SIMD mesh kernel mirrors the float triangle
-// test bit-exactly and the renderer has no use for a double path.)
+// headers' tests take float only: the SIMD mesh kernel mirrors the float
+// triangle test bit-exactly and the renderer has no use for a double path.)
 //
 // Both instantiations get the same float inputs (rays, triangles, spheres,
 // planes rounded to float once) and are compared with a long double reference
@@ -16,7 +19,9 @@
 // against the reference, and the relative error |t - t*| / t* of t over the
 // hits both agree on (max and RMS; for spheres the error is taken relative to
 // |o - c| + r instead of t, see measure()). Output: a markdown table on stdout.
-//   build: c++ -std=c++20 -O3 -DNDEBUG -I src bench/accuracy/kernel_precision.cpp -o kernel_precision
+//   build: c++ -std=c++20 -O3 -DNDEBUG -ffp-contract=off -I build/include
+//          bench/accuracy/kernel_precision.cpp -o kernel_precision
+//          (cmake's configure makes build/include/rayform)
 //   usage: kernel_precision [rays per set, default 200000]
 #include "rayform/geometry/plane_intersect.h"
 #include "rayform/geometry/sphere_intersect.h"
@@ -35,20 +40,10 @@
 using namespace rayform;
 using ld = long double;
 
-namespace tk {  // templated copies of the kernels
+namespace tk {  // the kernels on T
 
 template <class T>
 using v3 = glm::vec<3, T, glm::defaultp>;
-template <class T>
-struct Wider;  // where the production code steps up one precision
-template <>
-struct Wider<float> {
-  using type = double;
-};
-template <>
-struct Wider<double> {
-  using type = long double;
-};
 template <class T>
 constexpr T gamma_t(int n) {
   constexpr T u = std::numeric_limits<T>::epsilon() * T(0.5);
@@ -60,14 +55,8 @@ int max_dim(v3<T> v) {
 }
 
 template <class T>
-struct TriRay {
-  v3<T> origin;
-  int kx, ky, kz;
-  T sx, sy, sz;
-};
-template <class T>
-TriRay<T> make_tri_ray(v3<T> o, v3<T> dir) {
-  TriRay<T> tr;
+BasicTriangleRay<T> make_tri_ray(v3<T> o, v3<T> dir) {
+  BasicTriangleRay<T> tr;
   tr.origin = o;
   v3<T> ad = glm::abs(dir);
   tr.kz = max_dim(ad);
@@ -79,27 +68,11 @@ TriRay<T> make_tri_ray(v3<T> o, v3<T> dir) {
   tr.sz = T(1) / d.z;
   return tr;
 }
+// The watertight test of triangle_intersect.h after its shear (shear_triangle,
+// the production code's own, on T).
 template <class T>
-bool triangle(const TriRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, T* t_out) {
-  using W = typename Wider<T>::type;
-  v3<T> a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-  a = v3<T>(a[r.kx], a[r.ky], a[r.kz]);
-  b = v3<T>(b[r.kx], b[r.ky], b[r.kz]);
-  c = v3<T>(c[r.kx], c[r.ky], c[r.kz]);
-  a.x += r.sx * a.z;
-  a.y += r.sy * a.z;
-  b.x += r.sx * b.z;
-  b.y += r.sy * b.z;
-  c.x += r.sx * c.z;
-  c.y += r.sy * c.z;
-  T e0 = b.x * c.y - b.y * c.x;
-  T e1 = c.x * a.y - c.y * a.x;
-  T e2 = a.x * b.y - a.y * b.x;
-  if (e0 == T(0) || e1 == T(0) || e2 == T(0)) {
-    e0 = T(W(b.x) * W(c.y) - W(b.y) * W(c.x));
-    e1 = T(W(c.x) * W(a.y) - W(c.y) * W(a.x));
-    e2 = T(W(a.x) * W(b.y) - W(a.y) * W(b.x));
-  }
+bool triangle(const BasicTriangleRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, T* t_out) {
+  auto [a, b, c, e0, e1, e2] = shear_triangle(r, p0, p1, p2);
   if ((e0 < T(0) || e1 < T(0) || e2 < T(0)) && (e0 > T(0) || e1 > T(0) || e2 > T(0))) return false;
   T det = e0 + e1 + e2;
   if (det == T(0)) return false;
@@ -108,8 +81,8 @@ bool triangle(const TriRay<T>& r, v3<T> p0, v3<T> p1, v3<T> p2, T tmin, T tmax, 
   b.z *= r.sz;
   c.z *= r.sz;
   T t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
-  if (det < T(0) && (t_scaled >= tmin * det || t_scaled <= tmax * det)) return false;
-  if (det > T(0) && (t_scaled <= tmin * det || t_scaled >= tmax * det)) return false;
+  if (det < T(0) && t_scaled >= tmin * det) return false;
+  if (det > T(0) && t_scaled <= tmin * det) return false;
   T inv_det = T(1) / det;
   T t = t_scaled * inv_det;
   if (!(t > tmin && t < tmax)) return false;

@@ -41,15 +41,16 @@ inline constexpr int bvh_stack_size = bvh_max_depth + 2;
 
 struct BvhBuildOptions {
   // Leaves never hold more than this many primitives. Mesh BVHs: up to two
-  // 4-triangle packets (the SAH decides; 27% fewer nodes than with 4 on the 1M
-  // torus, random rays +5%, docs/performance.md); the top level asks for 1.
+  // 4-triangle packets (the SAH decides; fewer nodes and faster random rays
+  // than with one, docs/performance.md); the top level asks for 1.
   int max_leaf_size = 8;
   int bins = 16;               // SAH candidate planes per axis
   float traversal_cost = 1.f;  // relative to one primitive test (mesh BVH: one test of a 4-triangle packet)
   // build_mesh_accel with a WorkShare: meshes of at least this many triangles
   // are built shared among its parts (smaller ones whole by each part: the
   // exchange copies the arrays, and the parts wait for each other there).
-  // Measured over 2 MPI ranks: a 16k-triangle mesh gains nothing, 32k 18%.
+  // Half this size gained nothing shared over two ranks, this size did
+  // (docs/distributed.md).
   size_t share_min_triangles = size_t(1) << 15;
   bool operator==(const BvhBuildOptions&) const = default;
 };

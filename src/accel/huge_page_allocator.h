@@ -3,11 +3,11 @@
 // 2 MiB pages and, on Linux, advised as transparent huge pages (madvise
 // MADV_HUGEPAGE; the usual system setting "madvise" grants them only so).
 // Incoherent rays on a large mesh touch a few lines of many pages each, more
-// pages than 4 KiB TLB entries cover; Embree advises its BVH memory likewise.
-// Measured: closest hit on random rays on the 1M torus +10-20%
-// (docs/performance.md). On Linux such an array is a mapping of its own
-// (mmap), returned with munmap. Smaller arrays, and systems without the
-// advice, get ordinary aligned memory; the contents are the same either way.
+// pages than 4 KiB TLB entries cover; Embree advises its BVH memory likewise
+// (what random rays gain: docs/performance.md). On Linux such an array is a
+// mapping of its own (mmap), returned with munmap. Smaller arrays, and systems
+// without the advice, get ordinary aligned memory; the contents are the same
+// either way.
 #pragma once
 
 #include <cstddef>

@@ -4,8 +4,8 @@
 // sums (relative 2^-53 of the sum of |terms|). In float, both are
 // cancellations: n.dir is tiny at grazing angles and d - n.o is small when
 // the origin is near the plane but far from the world origin, and either
-// could cost all the digits of t (up to 77% error in the stress suite at
-// 1e-7 radians). In double, t is within a few float ulps of the exact
+// could cost all the digits of t (docs/accuracy.md: float's error at grazing
+// angles). In double, t is within a few float ulps of the exact
 // distance for the float inputs down to angles of about 1e-8 radians and
 // heights of 1e-8 |o|. A ray parallel to the plane (n.dir = 0) misses.
 #pragma once

@@ -22,13 +22,31 @@ struct TriangleHit {
   float b0, b1, b2;
 };
 
+// The per-ray constants and the shear below are templates on the scalar type
+// T: float wherever rayform tests a triangle, double too in
+// bench/accuracy/kernel_precision.cpp (the same steps a precision up).
+// WiderFloat<T> is the type the edge functions are redone in when one rounds
+// to zero: double for float, long double for double.
+template <class T>
+struct WiderFloat;
+template <>
+struct WiderFloat<float> {
+  using type = double;
+};
+template <>
+struct WiderFloat<double> {
+  using type = long double;
+};
+
 // Per-ray constants of the watertight test (permutation and shear), computed
 // once per ray and reused for every triangle the ray visits.
-struct TriangleRay {
-  vec3 origin;
+template <class T>
+struct BasicTriangleRay {
+  glm::vec<3, T> origin;
   int kx, ky, kz;
-  float sx, sy, sz;
+  T sx, sy, sz;
 };
+using TriangleRay = BasicTriangleRay<float>;
 
 inline TriangleRay make_triangle_ray(const Ray& r) {
   TriangleRay tr;
@@ -47,30 +65,36 @@ inline TriangleRay make_triangle_ray(const Ray& r) {
 // The triangle in the ray's space: vertices relative to the origin, axes
 // permuted (kz along the ray) and x, y sheared (z not yet scaled by sz), and
 // the edge functions: e0 for the edge b-c (weight of p0), e1 for c-a, e2 for
-// a-b, redone in double when one rounds to zero.
-struct ShearedTriangle {
-  vec3 a, b, c;
-  float e0, e1, e2;
+// a-b, redone in WiderFloat<T> when one rounds to zero.
+template <class T>
+struct BasicShearedTriangle {
+  glm::vec<3, T> a, b, c;
+  T e0, e1, e2;
 };
+using ShearedTriangle = BasicShearedTriangle<float>;
 
-inline ShearedTriangle shear_triangle(const TriangleRay& r, vec3 p0, vec3 p1, vec3 p2) {
-  vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-  a = vec3(a[r.kx], a[r.ky], a[r.kz]);
-  b = vec3(b[r.kx], b[r.ky], b[r.kz]);
-  c = vec3(c[r.kx], c[r.ky], c[r.kz]);
+template <class T>
+inline BasicShearedTriangle<T> shear_triangle(const BasicTriangleRay<T>& r, glm::vec<3, T> p0, glm::vec<3, T> p1,
+                                              glm::vec<3, T> p2) {
+  using V = glm::vec<3, T>;
+  using W = typename WiderFloat<T>::type;
+  V a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
+  a = V(a[r.kx], a[r.ky], a[r.kz]);
+  b = V(b[r.kx], b[r.ky], b[r.kz]);
+  c = V(c[r.kx], c[r.ky], c[r.kz]);
   a.x += r.sx * a.z;
   a.y += r.sy * a.z;
   b.x += r.sx * b.z;
   b.y += r.sy * b.z;
   c.x += r.sx * c.z;
   c.y += r.sy * c.z;
-  float e0 = b.x * c.y - b.y * c.x;
-  float e1 = c.x * a.y - c.y * a.x;
-  float e2 = a.x * b.y - a.y * b.x;
-  if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
-    e0 = float(double(b.x) * double(c.y) - double(b.y) * double(c.x));
-    e1 = float(double(c.x) * double(a.y) - double(c.y) * double(a.x));
-    e2 = float(double(a.x) * double(b.y) - double(a.y) * double(b.x));
+  T e0 = b.x * c.y - b.y * c.x;
+  T e1 = c.x * a.y - c.y * a.x;
+  T e2 = a.x * b.y - a.y * b.x;
+  if (e0 == T(0) || e1 == T(0) || e2 == T(0)) {
+    e0 = T(W(b.x) * W(c.y) - W(b.y) * W(c.x));
+    e1 = T(W(c.x) * W(a.y) - W(c.y) * W(a.x));
+    e2 = T(W(a.x) * W(b.y) - W(a.y) * W(b.x));
   }
   return {a, b, c, e0, e1, e2};
 }

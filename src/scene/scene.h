@@ -92,7 +92,7 @@ struct UvTransform {
 // course's a5 `Noise`; the ambient term keeps the diffuse colour): at world
 // point p, M = sin(frequency * p.x + amplitude * sum_{i < octaves}
 // perlin_noise(2^i p) / 2^i), w = (M + 1) / 2, colour = w color1 + (1 - w) color2
-// (render/perlin_noise.h).
+// (math/perlin_noise.h).
 struct SolidNoise {
   bool enabled = false;
   vec3 color1{0.f}, color2{0.f};

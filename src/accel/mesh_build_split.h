@@ -1,0 +1,233 @@
+// Where the MeshAccel builder (mesh_accel_builder.h) splits a range of
+// primitives: the binned SAH over its doubled centroids (or by count, where
+// no SAH split exists or the tree is deep), and the partition of the PrimRef
+// array by it.
+#pragma once
+
+#include "rayform/accel/mesh_build_refs.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace rayform::mesh_build {
+
+constexpr int max_bins = 64;
+static_assert(max_bins <= PrimRef::bin_mask + 1);
+
+struct Split {
+  int axis = -1;                // -1: no SAH split (split by count)
+  int nb = 0;                   // bins per axis
+  int pos = 0;                  // primitives in bins <= pos go left
+  uint32_t left = 0;            // how many primitives go left
+  float cost = infinity;        // SAH cost relative to a packet test
+  float lo = 0.f, scale = 0.f;  // bin = (c - lo) * scale on `axis`
+};
+
+// Per axis and bin: the box of the primitives whose centroid falls in it, and
+// their count. Only the first `nb` bins of each axis are used (and cleared).
+struct Bins {
+  f4 lo[3][max_bins], hi[3][max_bins];
+  uint32_t count[3][max_bins];
+  void clear(int nb) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < nb; ++b) {
+        lo[a][b] = simd::splat(infinity);
+        hi[a][b] = simd::splat(-infinity);
+        count[a][b] = 0;
+      }
+  }
+  void merge(const Bins& o, int nb) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < nb; ++b) {
+        lo[a][b] = simd::vmin(lo[a][b], o.lo[a][b]);
+        hi[a][b] = simd::vmax(hi[a][b], o.hi[a][b]);
+        count[a][b] += o.count[a][b];
+      }
+  }
+};
+
+// Finds splits of ranges of a PrimRef array and partitions the array by them.
+class RangeSplitter {
+ public:
+  // bins_per_axis in [2, max_bins]; traversal_cost >= 0.
+  RangeSplitter(std::vector<PrimRef>& refs, int bins_per_axis, float traversal_cost)
+      : refs_(refs), bins_per_axis_(bins_per_axis), traversal_cost_(traversal_cost) {}
+
+  // The best SAH split of r. Bins r's primitives, which partition(r, split)
+  // then reads: nothing may reorder r in between.
+  Split find_split(const Range& r, int depth) {
+    Split best;
+    if (depth > sah_depth_limit) return best;
+    float clo[4], chi[4], scale[4] = {0.f, 0.f, 0.f, 0.f};
+    simd::store(clo, r.cent.lo);
+    simd::store(chi, r.cent.hi);
+    // Fewer bins for few primitives (the sweep costs as much as the binning there).
+    const int nb = std::min(bins_per_axis_, std::max(4, int(r.count() / 2)));
+    bool any = false;
+    for (int a = 0; a < 3; ++a) {
+      float ext = chi[a] - clo[a];
+      if (ext > 0.f && std::isfinite(ext)) {
+        scale[a] = float(nb) * (1.f - 1e-6f) / ext;
+        any = true;
+      }
+    }
+    if (!any) return best;
+    const f4 vlo = simd::loadu(clo), vscale = simd::loadu(scale);
+    Bins bins;
+    bins.clear(nb);
+    if (r.count() >= parallel_bin_threshold) {
+      bins = tbb::parallel_reduce(
+          tbb::blocked_range<uint32_t>(r.begin, r.end, 1u << 13), bins,
+          [&](const tbb::blocked_range<uint32_t>& br, Bins acc) {
+            bin_range(br.begin(), br.end(), vlo, vscale, nb, acc);
+            return acc;
+          },
+          [&](Bins a, const Bins& b) {
+            a.merge(b, nb);
+            return a;
+          });
+    } else {
+      bin_range(r.begin, r.end, vlo, vscale, nb, bins);
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (scale[a] == 0.f) continue;
+      float right_area[max_bins];
+      uint32_t right_count[max_bins];
+      Box acc;
+      uint32_t n = 0;
+      for (int i = nb - 1; i > 0; --i) {
+        acc.expand(bins.lo[a][i], bins.hi[a][i]);
+        n += bins.count[a][i];
+        right_area[i] = acc.half_area();
+        right_count[i] = n;
+      }
+      acc = Box{};
+      n = 0;
+      for (int i = 0; i < nb - 1; ++i) {
+        acc.expand(bins.lo[a][i], bins.hi[a][i]);
+        n += bins.count[a][i];
+        if (n == 0 || right_count[i + 1] == 0) continue;
+        float cost = acc.half_area() * float(blocks(n)) + right_area[i + 1] * float(blocks(right_count[i + 1]));
+        if (cost < best.cost) {
+          best.cost = cost;
+          best.axis = a;
+          best.nb = nb;
+          best.pos = i;
+          best.left = n;
+          best.lo = clo[a];
+          best.scale = scale[a];
+        }
+      }
+    }
+    if (best.axis >= 0) {
+      float area = r.geom.half_area();
+      best.cost = traversal_cost_ + (area > 0.f ? best.cost / area : 0.f);
+    }
+    return best;
+  }
+
+  // Splits r by s (or, without a SAH split, by count) into two non-empty ranges.
+  std::pair<Range, Range> partition(const Range& r, const Split& s) {
+    Range left, right;
+    uint32_t mid = r.begin + s.left;
+    if (s.axis >= 0 && mid != r.begin && mid != r.end) {
+      swap_misplaced(r, s);
+      // The boxes as Hoare's partition accumulates them: [begin, mid) upwards,
+      // [mid, end) downwards (which only matters where +0 and -0 tie).
+      for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
+      for (uint32_t i = mid; i < r.end; ++i) add_before(right, refs_[i]);
+    } else {
+      // By count, at the median of the widest centroid axis when there is one.
+      mid = r.begin + r.count() / 2;
+      float clo[4], chi[4];
+      simd::store(clo, r.cent.lo);
+      simd::store(chi, r.cent.hi);
+      int axis = 0;
+      for (int a = 1; a < 3; ++a)
+        if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+      if (chi[axis] > clo[axis])
+        std::nth_element(refs_.begin() + r.begin, refs_.begin() + mid, refs_.begin() + r.end,
+                         [axis](const PrimRef& a, const PrimRef& b) {
+                           float ca = a.lo[axis] + a.hi[axis], cb = b.lo[axis] + b.hi[axis];
+                           return ca < cb || (ca == cb && a.id() < b.id());
+                         });
+      for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
+      for (uint32_t i = mid; i < r.end; ++i) add(right, refs_[i]);
+    }
+    left.begin = r.begin;
+    left.end = mid;
+    right.begin = mid;
+    right.end = r.end;
+    return {left, right};
+  }
+
+ private:
+  static constexpr uint32_t parallel_bin_threshold = 1u << 15;  // larger ranges are binned by parallel tasks
+  // Beyond this depth, splits by count (each child at most half) keep the
+  // tree within sah_depth_limit + 33 levels, which bounds the traversal stack.
+  static constexpr int sah_depth_limit = 32;
+
+  std::vector<PrimRef>& refs_;
+  int bins_per_axis_;
+  float traversal_cost_;
+
+  // Bins refs_[begin, end) by their doubled centroids, and records each one's
+  // bins in it for partition.
+  void bin_range(uint32_t begin, uint32_t end, const f4& clo, const f4& scale, int nb, Bins& bins) {
+    for (uint32_t i = begin; i < end; ++i) {
+      PrimRef& p = refs_[i];
+      f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
+      int b[4];
+      simd::to_int_clamped((lo + hi - clo) * scale, nb - 1, b);
+      p.hi[3] = PrimRef::bin_bits(uint32_t(b[0]), uint32_t(b[1]), uint32_t(b[2]));
+      for (int a = 0; a < 3; ++a) {
+        bins.lo[a][b[a]] = simd::vmin(bins.lo[a][b[a]], lo);
+        bins.hi[a][b[a]] = simd::vmax(bins.hi[a][b[a]], hi);
+        bins.count[a][b[a]]++;
+      }
+    }
+  }
+
+  // Moves the primitives of r going left by s (bin <= s.pos, as find_split
+  // recorded) to [begin, mid) and the others to [mid, end), mid = begin +
+  // s.left, as Hoare's partition does: the k-th primitive going right in
+  // [begin, mid) from the left swaps with the k-th going left in [mid, end)
+  // from the right. Branch-free scans over blocks of positions.
+  void swap_misplaced(const Range& r, const Split& s) {
+    constexpr uint32_t block = 64;
+    const uint32_t mid = r.begin + s.left, pos = uint32_t(s.pos);
+    const int axis = s.axis;
+    uint32_t lpos[block], rpos[block];  // positions of misplaced primitives, in pairing order
+    uint32_t a = r.begin, b = r.end;    // next to scan: a upwards, b - 1 downwards
+    uint32_t nl = 0, il = 0, nr = 0, ir = 0;
+    for (;;) {
+      if (il == nl) {
+        il = nl = 0;
+        for (const uint32_t stop = a + std::min(block, mid - a); a < stop; ++a) {
+          lpos[nl] = a;
+          nl += refs_[a].bin(axis) > pos;
+        }
+      }
+      if (ir == nr) {
+        ir = nr = 0;
+        for (const uint32_t stop = b - std::min(block, b - mid); b > stop; --b) {
+          rpos[nr] = b - 1;
+          nr += refs_[b - 1].bin(axis) <= pos;
+        }
+      }
+      const uint32_t k = std::min(nl - il, nr - ir);
+      for (uint32_t t = 0; t < k; ++t) std::swap(refs_[lpos[il + t]], refs_[rpos[ir + t]]);
+      il += k;
+      ir += k;
+      if ((il == nl && a == mid) || (ir == nr && b == mid)) break;
+    }
+  }
+};
+
+}  // namespace rayform::mesh_build
