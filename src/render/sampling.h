@@ -34,15 +34,17 @@ struct PixelSampleOffset {
   float weight;
 };
 
-// Van der Corput radical inverse in base 2.
-inline float radical_inverse2(uint32_t i) {
+// The 32 bits of i in reverse order.
+inline uint32_t reverse_bits32(uint32_t i) {
   i = (i << 16) | (i >> 16);
   i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
   i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
   i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
-  i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
-  return float(i >> 8) * (1.f / 16777216.f);
+  return ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
 }
+
+// Van der Corput radical inverse in base 2 (its 24 leading bits).
+inline float radical_inverse2(uint32_t i) { return float(reverse_bits32(i) >> 8) * (1.f / 16777216.f); }
 
 // A point u in the unit square as a filter's offset and weight.
 inline PixelSampleOffset filter_offset(vec2 u, PixelFilter filter) {
@@ -84,14 +86,6 @@ inline uint32_t sobol2_bits(uint32_t i) {
   for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
     if (i & 1u) r ^= v;
   return r;
-}
-
-inline uint32_t reverse_bits32(uint32_t i) {
-  i = (i << 16) | (i >> 16);
-  i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
-  i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
-  i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
-  return ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
 }
 
 // Sample `index` of an unbounded stratified sequence for one pixel, for

@@ -121,38 +121,33 @@ class TileRenderer {
   void stratified(const TileRect& r) const {
     const RenderOptions& o = options_;
     const bool alpha = film_.alpha();
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x) {
-        const float i = float(x), j = float(height_ - 1 - y);
-        const uint32_t pixel = uint32_t(y) * uint32_t(width_) + uint32_t(x);
-        PixelValues px;
-        if (aovs_) trace_primary(camera_ray(frame_, i, j), px);
-        // sum and weight over all samples; hit_sum and covered over those
-        // that hit a surface (for AlphaMode).
-        vec3 sum(0.f), hit_sum(0.f);
-        float weight = 0.f, covered = 0.f;
-        for (int n = 0; n < o.spp; ++n) {
-          PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter, o.sampler);
-          if (so.weight <= 0.f) continue;
-          bool hit;
-          const vec3 c = integrator_.radiance(camera_ray(frame_, i + so.offset.x, j + so.offset.y), 0, &hit);
-          sum += so.weight * c;
-          weight += so.weight;
-          if (hit) {
-            covered += so.weight;
-            if (alpha) hit_sum += so.weight * c;
-          }
+    each_pixel(r, [&](int x, int y, uint32_t pixel, PixelValues& px) {
+      const float i = float(x), j = float(height_ - 1 - y);
+      // sum and weight over all samples; hit_sum and covered over those
+      // that hit a surface (for AlphaMode).
+      vec3 sum(0.f), hit_sum(0.f);
+      float weight = 0.f, covered = 0.f;
+      for (int n = 0; n < o.spp; ++n) {
+        PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter, o.sampler);
+        if (so.weight <= 0.f) continue;
+        bool hit;
+        const vec3 c = integrator_.radiance(camera_ray(frame_, i + so.offset.x, j + so.offset.y), 0, &hit);
+        sum += so.weight * c;
+        weight += so.weight;
+        if (hit) {
+          covered += so.weight;
+          if (alpha) hit_sum += so.weight * c;
         }
-        if (weight <= 0.f) {  // no sample with weight: the centre ray alone
-          bool hit;
-          sum = integrator_.radiance(camera_ray(frame_, i, j), 0, &hit);
-          weight = 1.f;
-          covered = hit ? 1.f : 0.f;
-          hit_sum = hit ? sum : vec3(0.f);
-        }
-        film_.finish(px, sum, hit_sum, weight, covered);
-        film_.store(pixel, px);
       }
+      if (weight <= 0.f) {  // no sample with weight: the centre ray alone
+        bool hit;
+        sum = integrator_.radiance(camera_ray(frame_, i, j), 0, &hit);
+        weight = 1.f;
+        covered = hit ? 1.f : 0.f;
+        hit_sum = hit ? sum : vec3(0.f);
+      }
+      film_.finish(px, sum, hit_sum, weight, covered);
+    });
   }
 
   // Adaptive sampling's first pass (adaptive_sampling.h): every pixel's first round.
@@ -198,20 +193,31 @@ class TileRenderer {
 
   // Its second pass: each pixel filtered from the samples around it.
   void grid_filter(const TileRect& r, const GridSampleImage& image) const {
+    each_pixel(r, [&](int x, int y, uint32_t, PixelValues& px) {
+      float sums[GridSampleImage::max_channels] = {};
+      image.filter(x, y, sums);
+      // The weights sum to 1: the filtered colour, coverage and hit colour.
+      film_.finish(px, vec3(sums[0], sums[1], sums[2]), vec3(sums[4], sums[5], sums[6]), 1.f, sums[3]);
+    });
+  }
+
+ private:
+  // Every pixel (x, y) of the tile, row y from the top: value(x, y, pixel,
+  // px) sets its colour and coverage in px, which holds the depth, normal
+  // and albedo of the ray through the pixel's centre when they are asked
+  // for; px is then stored.
+  template <class PixelValueFn>
+  [[gnu::always_inline]] void each_pixel(const TileRect& r, PixelValueFn&& value) const {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
         const uint32_t pixel = uint32_t(y) * uint32_t(width_) + uint32_t(x);
         PixelValues px;
         if (aovs_) trace_primary(camera_ray(frame_, float(x), float(height_ - 1 - y)), px);
-        float sums[GridSampleImage::max_channels] = {};
-        image.filter(x, y, sums);
-        // The weights sum to 1: the filtered colour, coverage and hit colour.
-        film_.finish(px, vec3(sums[0], sums[1], sums[2]), vec3(sums[4], sums[5], sums[6]), 1.f, sums[3]);
+        value(x, y, pixel, px);
         film_.store(pixel, px);
       }
   }
 
- private:
   // The ray through the centre of pixel (i, j) (j from the bottom): camera_ray(frame, i, j).
   Ray centre_ray(int i, int j) const {
     return centre_rays_ ? centre_rays_->ray(i, j) : camera_ray(frame_, float(i), float(j));
