@@ -13,15 +13,14 @@ namespace rayform {
 namespace fs = std::filesystem;
 namespace {
 
-// `path` parsed, or UsageError when it names no file rayform writes.
-ImageFile checked_output(const std::string& path, const char* what) {
+// UsageError unless `file` names a file rayform writes, in a folder that exists.
+void check_output(const ImageFile& file, const char* what) {
+  const std::string& path = file.path;
   if (path.empty()) throw UsageError(std::string(what) + ": no file name given");
-  ImageFile file = image_file(path);
   if (!is_writable(file))
     throw UsageError(path + ": cannot write " + what + " images of type '" + fs::path(path).extension().string() +
                      "' (use .png, .bmp, .tga, .jpg, .exr, .hdr or .tif)");
   check_output_folder(path, what);
-  return file;
 }
 
 }  // namespace
@@ -47,18 +46,16 @@ JobOutputs parse_job_outputs(const RenderJob& job) {
 }
 
 JobOutputs job_outputs(const RenderJob& job) {
-  JobOutputs out;
-  out.color = checked_output(job.output, "colour");
-  if (job.depth) {
-    out.depth = checked_output(job.depth->file, "depth");
-    if (!(job.depth->max > job.depth->min))
-      throw UsageError("depth range must have MAX > MIN, got " + std::to_string(job.depth->min) + " .. " +
-                       std::to_string(job.depth->max));
-    out.depth_min = job.depth->min;
-    out.depth_max = job.depth->max;
+  const JobOutputs out = parse_job_outputs(job);
+  check_output(out.color, "colour");
+  if (out.depth) {
+    check_output(*out.depth, "depth");
+    if (!(out.depth_max > out.depth_min))
+      throw UsageError("depth range must have MAX > MIN, got " + std::to_string(out.depth_min) + " .. " +
+                       std::to_string(out.depth_max));
   }
-  if (!job.normals.empty()) out.normals = checked_output(job.normals, "normals");
-  if (!job.albedo.empty()) out.albedo = checked_output(job.albedo, "albedo");
+  if (out.normals) check_output(*out.normals, "normals");
+  if (out.albedo) check_output(*out.albedo, "albedo");
   if (job.transparent && !out.color.alpha)
     throw UsageError("--transparent: " + job.output + " cannot hold alpha (write .png, .tga, .exr or .tif)");
   return out;

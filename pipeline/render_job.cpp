@@ -90,7 +90,7 @@ void check_memory(const RenderJob& job, const RenderOptions& options) {
 
 }  // namespace
 
-LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, ready_options(job).load); }
+LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, job.load); }
 
 RenderOptions job_render_options(const RenderJob& job) { return render_options(job, parse_job_outputs(job)); }
 

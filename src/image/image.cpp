@@ -123,7 +123,7 @@ std::string write_temporary(const std::string& path, int width, int height, int 
 
 std::string write_image_temporary(const ImageFile& file, const Image& image) {
   const std::string& path = file.path;
-  if (!file.stb && (file.extension.empty() || !oiio_can_write(path)))
+  if (!is_writable(file))
     throw Error(path + ": cannot write images of this type (unknown extension '" + file.extension + "')");
   return write_temporary(
       path, image.width, image.height, image.channels, [&](const std::string& tmp, std::string* error) {
