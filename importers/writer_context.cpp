@@ -1,6 +1,7 @@
 #include "rayform/importers/writer_context.h"
 
 #include "rayform/importers/scene_writer.h"
+#include "rayform/importers/text_format.h"
 
 #include <filesystem>
 
@@ -19,6 +20,10 @@ WriterContext::WriterContext(const Scene& scene, const std::string& path, const 
 
 void WriterContext::note(const std::string& message) {
   if (messages_) messages_->push_back(name + ": " + message);
+}
+
+void WriterContext::note_names(const std::string& kind, const std::set<std::string>& names, const std::string& what) {
+  if (!names.empty()) note(kind + " " + quoted_list(names) + what);
 }
 
 }  // namespace rayform

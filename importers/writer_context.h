@@ -7,6 +7,7 @@
 #include "rayform/image/output_files.h"
 #include "rayform/scene/scene.h"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ class WriterContext {
 
   // Appends "<name>: <message>" to the messages, if any.
   void note(const std::string& message);
+  // When `names` is not empty, notes "<kind> '<a>', '<b>'<what>" (text_format.h's
+  // quoted_list): the things of one kind that the format could not hold alike.
+  void note_names(const std::string& kind, const std::set<std::string>& names, const std::string& what);
 
   const std::string path;  // the main output file
   const std::string name;  // its file name, which starts every message

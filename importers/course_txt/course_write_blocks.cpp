@@ -142,30 +142,22 @@ void CourseWriter::write_materials(std::ostringstream& o) {
   }
   if (need_default_) o << "    PhongMaterial {\n        diffuseColor 1 1 1\n    }\n";
   o << "}\n\n";
-  if (!emissive.empty())
-    context_.note("materials " + quoted_list(emissive) + ": emission dropped (the course has none)");
-  if (!cutouts.empty())
-    context_.note("materials " + quoted_list(cutouts) + ": alpha cut-outs dropped (the course draws them opaque)");
-  if (!two_sided.empty())
-    context_.note("materials " + quoted_list(two_sided) +
-                  ": back faces are shaded with their normals as given, not reversed " +
-                  "towards the viewer (the course format's convention)");
-  if (!single_sided.empty())
-    context_.note("materials " + quoted_list(single_sided) +
-                  ": single-sided becomes double-sided (the course has no such flag)");
-  if (!modulated.empty())
-    context_.note("materials " + quoted_list(modulated) +
-                  ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
-  if (!bumps_dropped.empty())
-    context_.note("materials " + quoted_list(bumps_dropped) +
-                  ": bump maps dropped (2012 dialect; write --dialect 2019)");
+  context_.note_names("materials", emissive, ": emission dropped (the course has none)");
+  context_.note_names("materials", cutouts, ": alpha cut-outs dropped (the course draws them opaque)");
+  context_.note_names("materials", two_sided,
+                      ": back faces are shaded with their normals as given, not reversed "
+                      "towards the viewer (the course format's convention)");
+  context_.note_names("materials", single_sided, ": single-sided becomes double-sided (the course has no such flag)");
+  context_.note_names(
+      "materials", modulated,
+      ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
+  context_.note_names("materials", bumps_dropped, ": bump maps dropped (2012 dialect; write --dialect 2019)");
   if (need_default_)
     context_.note("shapes without a material follow a MaterialIndex: they use an added white material " +
                   std::to_string(s_.materials.size()));
   for (const Mesh& m : s_.meshes)
     if (!m.colors.empty()) vertex_colored.insert(m.name);
-  if (!vertex_colored.empty())
-    context_.note("meshes " + quoted_list(vertex_colored) + ": vertex colours dropped (the course has none)");
+  context_.note_names("meshes", vertex_colored, ": vertex colours dropped (the course has none)");
 }
 
 // The BMP file of a Scene texture ("" when it cannot be read).

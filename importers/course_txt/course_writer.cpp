@@ -105,28 +105,20 @@ std::string CourseWriter::unique_file(const std::string& base, const std::string
 }
 
 void CourseWriter::report() {
-  if (!normals_changed_.empty())
-    context_.note(
-        "meshes " + quoted_list(normals_changed_) +
-        ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
-        "by up to " +
-        format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
-  if (!baked_uvs_.empty())
-    context_.note("materials " + quoted_list(baked_uvs_) +
-                  ": uv transform baked into the uvs of their meshes' OBJ files");
-  if (!srgb_.empty())
-    context_.note("textures " + quoted_list(srgb_) +
-                  ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
-  if (!half_texel_.empty())
-    context_.note("textures " + quoted_list(half_texel_) +
-                  ": the course samples with texel centres on whole numbers (half a texel off "
-                  "the usual convention)");
-  if (!repeat_.empty())
-    context_.note("textures " + quoted_list(repeat_) + ": the course clamps uvs to the image (no repeat or mirror)");
-  if (!nearest_.empty())
-    context_.note("textures " + quoted_list(nearest_) + ": nearest filtering dropped (the course filters bilinearly)");
-  if (!alpha_dropped_.empty())
-    context_.note("textures " + quoted_list(alpha_dropped_) + ": alpha dropped (24-bit BMP)");
+  context_.note_names(
+      "meshes", normals_changed_,
+      ": the course computes vertex normals from the faces (its meshes carry none); they differ from the source's "
+      "by up to " +
+          format_float(std::round(normal_deviation_ * 100.f) / 100.f) + " degrees");
+  context_.note_names("materials", baked_uvs_, ": uv transform baked into the uvs of their meshes' OBJ files");
+  context_.note_names("textures", srgb_,
+                      ": sRGB-encoded texels are read raw (linear) by the course; pixels kept as they are");
+  context_.note_names("textures", half_texel_,
+                      ": the course samples with texel centres on whole numbers (half a texel off "
+                      "the usual convention)");
+  context_.note_names("textures", repeat_, ": the course clamps uvs to the image (no repeat or mirror)");
+  context_.note_names("textures", nearest_, ": nearest filtering dropped (the course filters bilinearly)");
+  context_.note_names("textures", alpha_dropped_, ": alpha dropped (24-bit BMP)");
 }
 
 }  // namespace course_detail

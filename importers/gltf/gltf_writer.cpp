@@ -73,16 +73,13 @@ void GltfWriter::report() {
     context_.note(
         "Phong materials converted to metallic-roughness (docs/convert.md); the exact Phong values are kept in the "
         "material extras");
-  if (!clamped_.empty())
-    context_.note("materials " + quoted_list(clamped_) + ": diffuse colour outside [0, 1] clamped in baseColorFactor");
-  if (!raw_textures_.empty())
-    context_.note(
-        "textures " + quoted_list(raw_textures_) +
-        ": course textures (raw texels, texel centres on whole numbers) are kept as they are, the course's reading "
-        "in "
-        "the texture extras; other viewers read them as sRGB with the usual texel centres");
-  if (!converted_.empty())
-    context_.note("textures " + quoted_list(converted_) + " converted to PNG (glTF holds PNG and JPEG)");
+  context_.note_names("materials", clamped_, ": diffuse colour outside [0, 1] clamped in baseColorFactor");
+  context_.note_names(
+      "textures", raw_textures_,
+      ": course textures (raw texels, texel centres on whole numbers) are kept as they are, the course's reading "
+      "in "
+      "the texture extras; other viewers read them as sRGB with the usual texel centres");
+  context_.note_names("textures", converted_, " converted to PNG (glTF holds PNG and JPEG)");
   if (bump_maps_)
     context_.note(
         std::to_string(bump_maps_) +

@@ -369,30 +369,22 @@ class ObjWriter {
     const Background& b = scene_.background;
     if (b.color != Background{}.color || b.ambient != vec3(0.f) || b.cube_map[0] != invalid)
       context_.note("background colour, ambient light and cube map dropped (OBJ has no background)");
-    if (!replaced_.empty())
-      context_.note("materials " + quoted_list(replaced_) +
-                    ": their texture replaces the colour (course), written as Kd 1 1 1 "
-                    "(the diffuse colour, used where a shape has no uvs, is dropped)");
-    if (!baked_.empty())
-      context_.note("materials " + quoted_list(baked_) + ": rotated uv transform baked into the vt values");
-    if (!ns_zero_.empty())
-      context_.note("materials " + quoted_list(ns_zero_) +
-                    ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
-    if (!cutouts_.empty()) context_.note("materials " + quoted_list(cutouts_) + ": alpha cut-outs dropped");
-    if (!single_sided_.empty())
-      context_.note("materials " + quoted_list(single_sided_) +
-                    ": single-sided becomes double-sided (OBJ has no such flag)");
-    if (!one_side_lit_.empty())
-      context_.note("materials " + quoted_list(one_side_lit_) +
-                    ": back faces will be shaded with their normals reversed towards " +
-                    "the viewer, as OBJ materials are (the source shades them with the normal as given)");
-    if (!course_lookup_.empty())
-      context_.note("textures " + quoted_list(course_lookup_) +
-                    ": the course's texel centres (on whole numbers) are not expressible; "
-                    "OBJ readers sample half a texel off");
-    if (!nearest_.empty()) context_.note("textures " + quoted_list(nearest_) + ": nearest filtering dropped");
-    if (!mirror_.empty())
-      context_.note("textures " + quoted_list(mirror_) + ": mirrored or mixed wrap modes become repeat");
+    context_.note_names("materials", replaced_,
+                        ": their texture replaces the colour (course), written as Kd 1 1 1 "
+                        "(the diffuse colour, used where a shape has no uvs, is dropped)");
+    context_.note_names("materials", baked_, ": rotated uv transform baked into the vt values");
+    context_.note_names("materials", ns_zero_,
+                        ": Ns 0 with a specular colour: OBJ readers (rayform's too) read it as no highlight");
+    context_.note_names("materials", cutouts_, ": alpha cut-outs dropped");
+    context_.note_names("materials", single_sided_, ": single-sided becomes double-sided (OBJ has no such flag)");
+    context_.note_names("materials", one_side_lit_,
+                        ": back faces will be shaded with their normals reversed towards "
+                        "the viewer, as OBJ materials are (the source shades them with the normal as given)");
+    context_.note_names("textures", course_lookup_,
+                        ": the course's texel centres (on whole numbers) are not expressible; "
+                        "OBJ readers sample half a texel off");
+    context_.note_names("textures", nearest_, ": nearest filtering dropped");
+    context_.note_names("textures", mirror_, ": mirrored or mixed wrap modes become repeat");
   }
 
   const Scene& scene_;
