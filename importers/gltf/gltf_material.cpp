@@ -71,15 +71,6 @@ void record(std::vector<ExtensionUse>& uses, const std::string& name, ExtensionU
 
 }  // namespace
 
-void pbr_to_phong(vec3 base, float metallic, float roughness, vec3 f0_dielectric, Material& m) {
-  metallic = std::clamp(metallic, 0.f, 1.f);
-  roughness = std::clamp(roughness, 0.f, 1.f);
-  const vec3 f0 = glm::mix(f0_dielectric, base, metallic);
-  const float smooth = 1.f - roughness;
-  m.specular = f0 * smooth * smooth;
-  m.shininess = shininess_of_roughness(roughness);
-}
-
 void gltf_material_to_phong(const tinygltf::Material& gm, const std::string& file, const std::string& where,
                             Material& m, std::vector<ExtensionUse>& extensions) {
   using Support = ExtensionUse::Support;
@@ -180,24 +171,6 @@ void gltf_material_to_phong(const tinygltf::Material& gm, const std::string& fil
                                         "KHR_materials_dispersion",  "KHR_materials_diffuse_transmission"};
   for (const char* name : ignored)
     if (ext(name)) record(extensions, name, Support::ignored, "no Phong equivalent");
-}
-
-PbrValues phong_to_pbr(vec3 diffuse, vec3 specular, float shininess) {
-  PbrValues p;
-  const vec3 base = glm::clamp(diffuse, vec3(0.f), vec3(1.f));
-  p.base = vec4(base, 1.f);
-  if (specular == vec3(0.f) || !(shininess > 0.f)) {
-    p.metallic = 0.f;
-    p.roughness = 1.f;
-    return p;
-  }
-  const float n = std::clamp(shininess, min_shininess, max_shininess);
-  p.roughness = float(std::pow(2.0 * double(n) + 1.0, -0.25));
-  const float smooth = 1.f - p.roughness;
-  const vec3 f0 = glm::max(specular, vec3(0.f)) / (smooth * smooth);
-  const float mb = (base.r + base.g + base.b) / 3.f, mf = (f0.r + f0.g + f0.b) / 3.f;
-  p.metallic = mb > default_f0 ? std::clamp((mf - default_f0) / (mb - default_f0), 0.f, 1.f) : 0.f;
-  return p;
 }
 
 UvTransform gltf_uv_transform_to_scene(vec2 offset, float rotation, vec2 scale) {

@@ -33,6 +33,7 @@
 // ignored and said so once. Textures of these extensions are not sampled.
 #pragma once
 
+#include "rayform/importers/material_approximation.h"
 #include "rayform/scene/scene.h"
 
 #include <string>
@@ -43,9 +44,6 @@ struct Material;
 }
 
 namespace rayform {
-
-// Reflectance at normal incidence of a dielectric of index 1.5, glTF's default.
-inline constexpr float gltf_dielectric_f0 = 0.04f;
 
 // How a reader used a format extension the file names.
 struct ExtensionUse {
@@ -61,23 +59,6 @@ struct ExtensionUse {
 // are left to the caller. Extensions met are recorded in `extensions`.
 void gltf_material_to_phong(const tinygltf::Material& gm, const std::string& file, const std::string& where,
                             Material& m, std::vector<ExtensionUse>& extensions);
-
-// The Phong terms of metallic-roughness values (see the top of this file).
-void pbr_to_phong(vec3 base, float metallic, float roughness, vec3 f0_dielectric, Material& m);
-
-// Phong (diffuse K, specular Ks, shininess n) as glTF metallic-roughness, the
-// inverse of pbr_to_phong with F0_dielectric = 0.04:
-//   base      = K (clamped to [0, 1]);
-//   roughness = (2 n + 1)^(-1/4) (n = 0 or Ks = 0: 1, a matte surface);
-//   metallic  = (mean(F0) - 0.04) / (mean(base) - 0.04) clamped to [0, 1],
-//               F0 = Ks / (1 - roughness)^2 (0 when base is no brighter than 0.04).
-// The reader gives back K exactly and (Ks, n) exactly wherever they lie in the
-// reader's range (Ks = mix(0.04, K, m) (1 - r)^2 for some m in [0, 1], 1 <= n <= 1024).
-struct PbrValues {
-  vec4 base{1.f};
-  float metallic = 0.f, roughness = 1.f;
-};
-PbrValues phong_to_pbr(vec3 diffuse, vec3 specular, float shininess);
 
 // KHR_texture_transform (uv' = T(offset) R(rotation) S(scale) uv in glTF's uv
 // space, v pointing down the image) as the Material::uv_transform that gives

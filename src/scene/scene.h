@@ -5,6 +5,7 @@
 #pragma once
 
 #include "rayform/math/math.h"
+#include "rayform/scene/pbr_material.h"
 
 #include <array>
 #include <cstdint>
@@ -45,7 +46,13 @@ struct Light {
   Kind kind = Kind::directional;
   vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (directional, spot)
   vec3 position{0.f};              // point, spot
-  vec3 color{1.f};                 // radiance scale, linear
+  // Linear colour times intensity, in the course's units: a light of colour
+  // c lights a white diffuse surface facing it with the radiance c, under
+  // the course's Phong model (c K cos) and the physically based one alike
+  // (irradiance E = pi c, Lambert K / pi). A glTF light of `intensity` I
+  // (candela for point and spot, lux for directional) and colour C has
+  // c = C I / pi.
+  vec3 color{1.f};
   // Point/spot attenuation: colour / (attenuation_constant + falloff * distance^2)
   // when falloff > 0; falloff 0 means none (course 2012). attenuation_constant is
   // 0 for the course's 2019 dialect, 1 for its assignment 5 (a5).
@@ -74,20 +81,6 @@ struct Texture {
   Lookup lookup = Lookup::standard;
 };
 
-// Affine transform of texture coordinates (glTF KHR_texture_transform).
-struct UvTransform {
-  vec2 offset{0.f};
-  float rotation = 0.f;  // radians
-  vec2 scale{1.f};
-  bool is_identity() const { return offset == vec2(0.f) && rotation == 0.f && scale == vec2(1.f); }
-  // uv' = T R S uv, R = rows (cos, sin), (-sin, cos) (KHR_texture_transform).
-  vec2 apply(vec2 uv) const {
-    float c = std::cos(rotation), s = std::sin(rotation);
-    vec2 scaled = uv * scale;
-    return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + offset;
-  }
-};
-
 // Solid noise replacing a material's diffuse colour in the diffuse term (the
 // course's a5 `Noise`; the ambient term keeps the diffuse colour): at world
 // point p, M = sin(frequency * p.x + amplitude * sum_{i < octaves}
@@ -100,9 +93,15 @@ struct SolidNoise {
   float frequency = 1.f, amplitude = 1.f;
 };
 
-// Phong material. Colours are linear RGB.
+// A surface's material: one of two models. The course's Phong model (the
+// fields down to `bump_texture`; course scenes and OBJ's Kd/Ks/Ns), or glTF's
+// physically based metallic-roughness model (`pbr`; glTF files and OBJ's PBR
+// extension), which reads of the fields above it only `double_sided`,
+// `two_sided_lighting` and `unlit`. Colours are linear RGB.
 struct Material {
+  enum class Model : uint8_t { phong, metallic_roughness };
   std::string name;
+  Model model = Model::phong;
   vec3 diffuse{1.f};
   vec3 specular{0.f};
   float shininess = 0.f;  // Phong exponent
@@ -134,6 +133,7 @@ struct Material {
   SolidNoise noise;            // enabled: replaces the diffuse colour in the diffuse term
   bool unlit = false;          // true: the colour is K alone, no lights (glTF KHR_materials_unlit)
   int bump_texture = invalid;  // parsed and kept (course 2019 `bump`)
+  PbrMaterial pbr;             // Model::metallic_roughness
 };
 
 struct Sphere {
@@ -160,7 +160,12 @@ struct Mesh {
   std::string source_path;  // file it was read from, if any
   std::vector<vec3> positions;
   std::vector<vec3> normals;        // empty: face normals
-  std::vector<vec2> uvs;            // empty: no texture coordinates
+  std::vector<vec2> uvs;            // empty: no texture coordinates (glTF TEXCOORD_0)
+  std::vector<vec2> uvs1;           // a second set (glTF TEXCOORD_1), empty or one per position
+  // Tangents (xyz, unit, in object space) and the bitangent's sign w (+-1):
+  // bitangent = w cross(normal, tangent). Empty: generated where a normal
+  // texture needs them (render/prepare).
+  std::vector<vec4> tangents;
   std::vector<vec3> colors;         // empty: no vertex colours
   std::vector<uint32_t> indices;    // three per triangle
   std::vector<int> face_materials;  // empty: the node's material for every face
