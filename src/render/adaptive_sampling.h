@@ -55,10 +55,13 @@ struct AdaptiveState {
   int n = 0;
 };
 
-// A traced sample: its colour and whether it hit a surface.
+// A traced sample: its colour, the fraction of it surfaces cover (1 on a
+// hit, 0 on a miss, between behind blended surfaces) and the part of the
+// colour they give (the colour on a hit, 0 on a miss).
 struct TracedSample {
   vec3 color;
-  bool hit;
+  float coverage;
+  vec3 covered;
 };
 
 // Where a pixel's samples go and how many it takes; a caller's `trace(u)`
@@ -109,9 +112,9 @@ class AdaptiveSampler {
       const TracedSample s = trace(u);
       const vec3 c = s.color;
       st.sum += c;
-      if (s.hit) {
-        st.covered += 1.f;
-        if (hit_sums_) st.hit_sum += c;
+      if (s.coverage > 0.f) {
+        st.covered += s.coverage;
+        if (hit_sums_) st.hit_sum += s.covered;
       }
       vec3 e = c;
       if (srgb_)

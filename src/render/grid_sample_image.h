@@ -1,5 +1,5 @@
 // The sample image of the course's 3x3-sample grid (grid_filter.h): 3W x 3H
-// samples, each its colour, whether it hit (1 or 0, for the background and
+// samples, each its colour, its coverage (1 on a hit, 0 on a miss, for the background and
 // coverage) and, with coverage, its colour when it hit (0 when it missed);
 // and each pixel filtered from the 7 x 7 samples around its block.
 #pragma once
@@ -27,14 +27,14 @@ class GridSampleImage {
         wy_(grid_axis_weights(height, gaussian)) {}
 
   // Sample (a, b) of pixel (x, y) (a, b = 0..2 from the left and the top).
-  [[gnu::always_inline]] void set(int x, int y, int a, int b, vec3 c, bool hit) {
+  [[gnu::always_inline]] void set(int x, int y, int a, int b, vec3 c, float coverage, vec3 covered) {
     float* out = samples_.data() + ((size_t(grid_samples) * size_t(y) + size_t(b)) * row_ +
                                     size_t(grid_samples) * size_t(x) + size_t(a)) *
                                        size_t(channels_);
     for (int k = 0; k < 3; ++k) out[k] = c[k];
-    out[3] = hit ? 1.f : 0.f;
+    out[3] = coverage;
     if (channels_ == 7)
-      for (int k = 0; k < 3; ++k) out[4 + k] = hit ? c[k] : 0.f;
+      for (int k = 0; k < 3; ++k) out[4 + k] = covered[k];
   }
 
   // Pixel (x, y)'s weighted sums over the samples around its block (the

@@ -1,5 +1,7 @@
 #include "rayform/render/prepared_scene.h"
 
+#include "rayform/scene/mesh_tangents.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -42,6 +44,7 @@ int shape_count(const Scene& s, ShapeKind k) {
 size_t PreparedScene::memory_bytes() const {
   size_t bytes = instances.capacity() * sizeof(Instance) + top.memory_bytes();
   for (const MeshAccel& m : meshes) bytes += m.memory_bytes();
+  for (const std::vector<vec4>& t : corner_tangents) bytes += t.capacity() * sizeof(vec4);
   for (const TextureImage& t : textures) bytes += t.memory_bytes();
   for (const TextureImage& t : cube_map) bytes += t.memory_bytes();
   return bytes;
@@ -142,15 +145,48 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     if (!m.double_sided) f.single_sided = true;
     if (m.noise.enabled) f.noise = true;
     if (!m.back_faces_cast_shadows) f.back_face_shadow_gaps = true;
-    int t = m.diffuse_texture;
-    if (t >= 0 && t < int(scene.textures.size())) {
+    auto use_texture = [&](int t) {
+      if (t < 0 || t >= int(scene.textures.size())) return;
       f.textures = true;
       if (!queued[t]) {
         queued[t] = 1;
         to_decode.push_back({t, &p.textures[t]});
       }
+    };
+    if (m.model == Material::Model::metallic_roughness) {
+      const PbrMaterial& pm = m.pbr;
+      f.pbr = true;
+      f.specular = true;  // reflection rays
+      if (pm.alpha_mode != PbrMaterial::AlphaMode::opaque) f.alpha_cutout = true;
+      f.blend |= pm.alpha_mode == PbrMaterial::AlphaMode::blend;
+      f.transmission |= pm.transmission > 0.f || pm.transmission_texture.used();
+      for (const TextureSlot* slot : pbr_texture_slots(pm)) use_texture(slot->texture);
+    } else {
+      use_texture(m.diffuse_texture);
     }
   }
+  // Tangents for the meshes a normal texture is drawn on that have none.
+  p.corner_tangents.resize(scene.meshes.size());
+  std::vector<int> tangent_uv_set(scene.meshes.size(), -1);
+  auto needs_tangents = [&](int material) -> int {  // the uv set of its normal texture, or -1
+    const Material& m = p.materials[size_t(material)];
+    if (m.model != Material::Model::metallic_roughness) return -1;
+    if (m.pbr.normal_texture.used()) return m.pbr.normal_texture.texcoord;
+    if (m.pbr.clearcoat_normal_texture.used()) return m.pbr.clearcoat_normal_texture.texcoord;
+    return -1;
+  };
+  for (const Instance& inst : p.instances) {
+    if (inst.kind != ShapeKind::mesh) continue;
+    const Mesh& m = scene.meshes[size_t(inst.shape)];
+    if (!m.tangents.empty()) continue;
+    int& set = tangent_uv_set[size_t(inst.shape)];
+    if (set < 0) set = needs_tangents(inst.material);
+    for (int fm : m.face_materials)
+      if (set < 0 && fm >= 0 && fm < int(scene.materials.size())) set = needs_tangents(fm);
+  }
+  tbb::parallel_for(size_t(0), scene.meshes.size(), [&](size_t i) {
+    if (tangent_uv_set[i] >= 0) p.corner_tangents[i] = corner_tangents(scene.meshes[i], tangent_uv_set[i]);
+  });
   for (const Light& l : scene.lights) {
     p.lights.push_back(prepare_light(l));
     if (l.kind != Light::Kind::directional) f.point_lights = true;

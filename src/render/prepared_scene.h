@@ -49,6 +49,11 @@ struct SceneFeatures {
   // Some material's back faces cast no shadow (Material::back_faces_cast_shadows):
   // shadow rays then ask for the closest hit.
   bool back_face_shadow_gaps = false;
+  // Some material is glTF's metallic-roughness model (Material::pbr): the
+  // render takes the generic path, whose shading tests each hit's model.
+  bool pbr = false;
+  bool blend = false;         // some pbr material blends (alpha mode BLEND): shadows then pass it in part
+  bool transmission = false;  // some pbr material transmits light
 };
 
 // A light with what shading needs at every hit computed once.
@@ -81,6 +86,10 @@ struct PreparedScene {
   std::vector<uint32_t> plane_instances;  // instances of planes (unbounded, outside `top`)
   Bvh top;                                // over the bounded instances
   std::vector<MeshAccel> meshes;          // per Scene mesh; empty if unused
+  // Per Scene mesh: generated tangents, three per triangle (one per corner,
+  // scene/mesh_tangents.h), for a used mesh that a normal texture needs them
+  // for and whose file gave none; else empty.
+  std::vector<std::vector<vec4>> corner_tangents;
   std::vector<TextureImage> textures;     // per Scene texture; empty image if unused
   std::vector<Material> materials;        // the Scene's, then one default material
   std::vector<TextureImage> cube_map;     // six faces, or empty

@@ -61,7 +61,8 @@ struct PathChoice {
 };
 
 PathChoice choose_path(const PreparedScene& p, const RenderOptions& o) {
-  if (o.generic) return {true, true, true};
+  // The metallic-roughness model is shaded on the generic path only.
+  if (o.generic || p.features.pbr) return {true, true, true};
   return {p.features.textures, p.features.specular, p.features.alpha_cutout || p.features.single_sided};
 }
 

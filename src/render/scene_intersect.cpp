@@ -43,6 +43,20 @@ SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hi
         sp.uv = b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2];
         sp.has_uv = true;
       }
+      if (!m.uvs1.empty()) {
+        sp.uv1 = b0 * m.uvs1[i0] + b1 * m.uvs1[i1] + b2 * m.uvs1[i2];
+        sp.has_uv1 = true;
+      }
+      if (!m.tangents.empty()) {
+        sp.tangent = b0 * m.tangents[i0] + b1 * m.tangents[i1] + b2 * m.tangents[i2];
+        sp.tangent.w = m.tangents[i0].w;
+        sp.has_tangent = true;
+      } else if (!p.corner_tangents[size_t(inst.shape)].empty()) {
+        const vec4* c = &p.corner_tangents[size_t(inst.shape)][3 * size_t(hit.primitive)];
+        sp.tangent = b0 * c[0] + b1 * c[1] + b2 * c[2];
+        sp.tangent.w = c[0].w;
+        sp.has_tangent = true;
+      }
       if (!m.colors.empty()) sp.color = b0 * m.colors[i0] + b1 * m.colors[i1] + b2 * m.colors[i2];
       if (!m.face_materials.empty()) {
         int fm = m.face_materials[hit.primitive];
@@ -52,6 +66,10 @@ SurfacePoint surface_point(const PreparedScene& p, const Ray& ray, const Hit& hi
     }
   }
   if (inst.has_transform) {
+    if (sp.has_tangent) {  // a direction: the linear part; a mirroring transform flips the handedness
+      const vec3 t = mat3(inst.to_world) * vec3(sp.tangent);
+      sp.tangent = vec4(t, glm::determinant(mat3(inst.to_world)) < 0.f ? -sp.tangent.w : sp.tangent.w);
+    }
     n_obj = inst.normal_to_world * n_obj;
     ng_obj = inst.normal_to_world * ng_obj;
     if (point) pe = transform_point(inst.to_world, pe);

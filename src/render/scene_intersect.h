@@ -158,6 +158,14 @@ struct SurfacePoint {
   vec3 geometric_normal{0.f, 0.f, 1.f};  // unit length
   vec2 uv{0.f};
   bool has_uv = false;
+  vec2 uv1{0.f};  // the second set (Mesh::uvs1)
+  bool has_uv1 = false;
+  // Tangent (xyz, world space, not normalised) and the bitangent's sign w
+  // (Mesh::tangents convention, with w flipped where the instance's
+  // transform mirrors), where the mesh has tangents (from the file or
+  // generated at prepare for normal textures).
+  vec4 tangent{0.f};
+  bool has_tangent = false;
   vec3 color{1.f};  // vertex colour (1 when absent)
   int material = invalid;
 };

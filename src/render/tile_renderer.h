@@ -130,21 +130,23 @@ class TileRenderer {
       for (int n = 0; n < o.spp; ++n) {
         PixelSampleOffset so = pixel_sample(pixel, n, o.spp, o.filter, o.sampler);
         if (so.weight <= 0.f) continue;
-        bool hit;
-        const vec3 c = integrator_.radiance(camera_ray(frame_, i + so.offset.x, j + so.offset.y), 0, &hit);
+        const Ray ray = camera_ray(frame_, i + so.offset.x, j + so.offset.y);
+        float coverage;
+        const vec3 c = integrator_.radiance(ray, 0, &coverage);
         sum += so.weight * c;
         weight += so.weight;
-        if (hit) {
-          covered += so.weight;
-          if (alpha) hit_sum += so.weight * c;
+        if (coverage > 0.f) {
+          covered += so.weight * coverage;
+          if (alpha) hit_sum += so.weight * integrator_.covered_part(ray, c, coverage);
         }
       }
       if (weight <= 0.f) {  // no sample with weight: the centre ray alone
-        bool hit;
-        sum = integrator_.radiance(camera_ray(frame_, i, j), 0, &hit);
+        const Ray ray = camera_ray(frame_, i, j);
+        float coverage;
+        sum = integrator_.radiance(ray, 0, &coverage);
         weight = 1.f;
-        covered = hit ? 1.f : 0.f;
-        hit_sum = hit ? sum : vec3(0.f);
+        covered = coverage;
+        hit_sum = integrator_.covered_part(ray, sum, coverage);
       }
       film_.finish(px, sum, hit_sum, weight, covered);
     });
@@ -186,7 +188,7 @@ class TileRenderer {
           for (int a = 0; a < grid_samples; ++a) {
             const vec2 off = grid_sample_offset(pixel, a, b, options_.grid.jitter);
             const TracedSample s = trace(i + off.x, j - off.y);
-            image.set(x, y, a, b, s.color, s.hit);
+            image.set(x, y, a, b, s.color, s.coverage, s.covered);
           }
       }
   }
@@ -226,7 +228,9 @@ class TileRenderer {
   // The sample at continuous pixel coordinates (i, j).
   [[gnu::always_inline]] TracedSample trace(float i, float j) const {
     TracedSample s;
-    s.color = integrator_.radiance(camera_ray(frame_, i, j), 0, &s.hit);
+    const Ray ray = camera_ray(frame_, i, j);
+    s.color = integrator_.radiance(ray, 0, &s.coverage);
+    s.covered = integrator_.covered_part(ray, s.color, s.coverage);
     return s;
   }
 
@@ -242,6 +246,12 @@ class TileRenderer {
     px.depth = hit.t;
     px.normal = sp.normal;
     px.albedo = vec3(k);
+    if (integrator_.layered()) {  // what lies behind the first hit counts
+      float coverage;
+      const vec3 c = integrator_.radiance(ray, 0, &coverage);
+      film_.finish(px, c, integrator_.covered_part(ray, c, coverage), 1.f, coverage);
+      return;
+    }
     px.color = integrator_.shade(ray, sp, vec3(k), 0);
   }
   void trace_primary(const Ray& ray, PixelValues& px) const {

@@ -1,7 +1,11 @@
-// The integrator: the colour seen along a ray, by the course's recursive
-// (Whitted) ray tracing with Phong shading (shade_phong.h): the closest hit
-// that is not skipped, its lights (with shadow rays when asked), and mirror
-// reflection and refraction up to RenderOptions::bounces. One per render
+// The integrator: the colour seen along a ray, by recursive (Whitted) ray
+// tracing: the closest hit that is not skipped, its lights (with shadow rays
+// when asked), and mirror reflection and refraction up to
+// RenderOptions::bounces. A hit is shaded by its material's model: the
+// course's Phong model (shade_phong.h), or glTF's metallic-roughness model
+// (shade_pbr.h, pbr_brdf.h; only on the generic path, which a scene with
+// such materials takes), whose blended surfaces let the rest of the ray
+// through and whose volumes attenuate the light inside them. One per render
 // path: its template switches remove the tests a prepared scene does not need.
 #pragma once
 
@@ -11,6 +15,7 @@
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
 #include "rayform/render/scene_intersect.h"
+#include "rayform/render/shade_pbr.h"
 #include "rayform/render/shade_phong.h"
 
 #include <algorithm>
@@ -51,9 +56,17 @@ struct WhittedIntegrator {
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
   }
 
+  // Whether this path shades the metallic-roughness model (the generic one).
+  static constexpr bool shades_pbr = Textures && Specular && Skips;
+
   vec4 albedo(const Material& m, const SurfacePoint& sp) const {
-    if constexpr (Textures) return surface_albedo(prepared, m, sp);
-    else return vec4(m.diffuse * sp.color, 1.f);
+    if constexpr (Textures) {
+      if constexpr (shades_pbr)
+        if (m.model == Material::Model::metallic_roughness) return pbr_base_color(prepared, m.pbr, sp);
+      return surface_albedo(prepared, m, sp);
+    } else {
+      return vec4(m.diffuse * sp.color, 1.f);
+    }
   }
 
   // Closest hit that is neither a cut-out hole (alpha below the material's
@@ -111,19 +124,41 @@ struct WhittedIntegrator {
   }
 
   // The colour seen along a ray travelling in a medium of index `medium`
-  // (camera rays: outside_index), and whether it hit a surface (*hit; for coverage).
-  vec3 radiance(const Ray& ray, int depth, bool* hit, float medium = outside_index) const {
+  // (camera rays: outside_index), and the fraction of it that surfaces
+  // cover (*coverage: 1 on a hit, 0 on a miss, between behind blended
+  // surfaces; for AlphaMode).
+  vec3 radiance(const Ray& ray, int depth, float* coverage, float medium = outside_index) const {
+    if constexpr (shades_pbr)
+      if (prepared.features.blend || prepared.features.transmission) return radiance_layers(ray, depth, coverage);
     Hit h;
     SurfacePoint sp;
     vec4 k(0.f);
-    *hit = closest(ray, &h, &sp, &k);
-    if (!*hit) return miss(ray);
+    const bool hit = closest(ray, &h, &sp, &k);
+    *coverage = hit ? 1.f : 0.f;
+    if (!hit) return miss(ray);
     return shade(ray, sp, vec3(k), depth, medium);
+  }
+
+  // Whether radiance() goes through radiance_layers (blended or
+  // transmissive materials): the first hit alone does not give the colour.
+  bool layered() const {
+    if constexpr (shades_pbr) return prepared.features.blend || prepared.features.transmission;
+    else return false;
+  }
+
+  // The part of a camera ray's colour c that its covering surfaces give
+  // (the background behind them left out): c on a hit, 0 on a miss.
+  vec3 covered_part(const Ray& ray, vec3 c, float coverage) const {
+    if (coverage >= 1.f) return c;
+    if (coverage <= 0.f) return vec3(0.f);
+    return c - (1.f - coverage) * miss(ray);
   }
 
   vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth, float medium = outside_index) const {
     const Material& m = prepared.materials[sp.material];
     if (m.unlit) return k;
+    if constexpr (shades_pbr)
+      if (m.model == Material::Model::metallic_roughness) return shade_pbr(ray, sp, m, k, depth);
     // The unit view direction, for highlights and secondary rays only.
     vec3 d(0.f);
     if constexpr (Specular) d = glm::normalize(ray.direction);
@@ -143,6 +178,115 @@ struct WhittedIntegrator {
     return c;
   }
 
+  // radiance() through the layers of a scene with blended or transmissive
+  // materials: a blended hit of alpha a adds a times its colour and lets
+  // 1 - a of the rest of the ray through (in ray order); a hit seen from
+  // inside a volume is attenuated over the distance the ray travelled in it.
+  vec3 radiance_layers(Ray ray, int depth, float* coverage) const {
+    vec3 sum(0.f);
+    float through = 1.f;  // the share of the ray not yet covered
+    for (;;) {
+      Hit h;
+      SurfacePoint sp;
+      vec4 k(0.f);
+      if (!closest(ray, &h, &sp, &k)) {
+        *coverage = 1.f - through;
+        return sum + through * miss(ray);
+      }
+      const Material& m = prepared.materials[sp.material];
+      vec3 c = shade(ray, sp, vec3(k), depth);
+      const bool pbr = m.model == Material::Model::metallic_roughness;
+      if (pbr && m.pbr.thickness > 0.f && glm::dot(ray.direction, sp.geometric_normal) > 0.f)
+        c *= volume_transmittance(m.pbr, h.t * glm::length(ray.direction));
+      const float alpha =
+          pbr && m.pbr.alpha_mode == PbrMaterial::AlphaMode::blend ? std::clamp(k.a, 0.f, 1.f) : 1.f;
+      sum += through * alpha * c;
+      through *= 1.f - alpha;
+      if (!(through > 0.f)) {
+        *coverage = 1.f;
+        return sum;
+      }
+      ray.tmin = next_float_up(h.t);
+    }
+  }
+
+  // The share of a light's colour that reaches the hit point: 0 or 1, or
+  // with blended materials the product of 1 - alpha over the blended
+  // surfaces on the way (any other surface blocks).
+  vec3 light_through(const SurfacePoint& sp, const Light& l, const LightSample& ls) const {
+    if (!prepared.features.blend) return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
+    Ray shadow = l.kind == Light::Kind::directional
+                     ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
+                     : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);
+    float through = 1.f;
+    for (;;) {
+      Hit h;
+      SurfacePoint blocker;
+      vec4 k(0.f);
+      if (!closest(shadow, &h, &blocker, &k)) return vec3(through);
+      const Material& m = prepared.materials[blocker.material];
+      if (m.model != Material::Model::metallic_roughness || m.pbr.alpha_mode != PbrMaterial::AlphaMode::blend)
+        return vec3(0.f);
+      through *= 1.f - std::clamp(k.a, 0.f, 1.f);
+      if (!(through > 0.f)) return vec3(0.f);
+      shadow.tmin = next_float_up(h.t);
+    }
+  }
+
+  // A metallic-roughness hit: emission, the ambient light on the diffuse
+  // base, each light through the BRDF (irradiance pi x the light's colour,
+  // scene.h), and up to RenderOptions::bounces one mirror-direction ray
+  // weighted by the specular layers' albedo and one refraction ray
+  // weighted by the transmission (straight through a thin wall, bent by the
+  // index into and out of a volume). The occlusion texture scales the
+  // indirect light: the ambient term and the reflection ray.
+  vec3 shade_pbr(const Ray& ray, const SurfacePoint& sp, const Material& m, vec3 base, int depth) const {
+    const vec3 d = glm::normalize(ray.direction), v = -d;
+    const bool flipped = m.two_sided_lighting && glm::dot(ray.direction, sp.geometric_normal) > 0.f;
+    const PbrPoint point = pbr_point(prepared, m.pbr, sp, base, d, flipped);
+    const PbrSurface& s = point.surface;
+    const vec3 n = point.normal;
+    vec3 c = point.emission +
+             scene.background.ambient * s.base * ((1.f - s.metallic) * (1.f - s.transmission) * point.occlusion);
+    for (const PreparedLight& l : prepared.lights) {
+      const LightSample ls = sample_light(l, sp.position);
+      const vec3 f = pbr_reflection(s, n, v, ls.to_light);
+      if (f == vec3(0.f)) continue;
+      vec3 through(1.f);
+      if (options.shadows) {
+        through = light_through(sp, l.light, ls);
+        if (through == vec3(0.f)) continue;
+      }
+      c += f * (pi * ls.color) * through;
+    }
+    if (depth >= options.bounces) return c;
+    auto trace_dir = [&](vec3 w) {
+      float coverage;
+      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage);
+    };
+    const float n_dot_v = std::max(glm::dot(n, v), 0.f);
+    const vec3 reflected = d + 2.f * n_dot_v * n;
+    const vec3 specular = pbr_specular_albedo(s, n_dot_v) * point.occlusion;
+    vec3 reflection_weight = specular;
+    if (s.transmission > 0.f && s.metallic < 1.f) {
+      const vec3 weight = pbr_transmission_weight(s, n_dot_v);
+      if (weight != vec3(0.f)) {
+        vec3 refracted = d;  // a thin wall: straight through
+        if (point.volume && s.ior > 1.f) {
+          const bool entering = glm::dot(d, sp.geometric_normal) < 0.f;
+          const float eta = entering ? 1.f / s.ior : s.ior;
+          const float sin2_t = eta * eta * std::max(0.f, 1.f - n_dot_v * n_dot_v);
+          if (sin2_t < 1.f) refracted = eta * d + (eta * n_dot_v - std::sqrt(1.f - sin2_t)) * n;
+          else refracted = vec3(0.f);  // total internal reflection: the weight goes to the reflection
+        }
+        if (refracted != vec3(0.f)) c += weight * trace_dir(refracted);
+        else reflection_weight += weight;
+      }
+    }
+    if (reflection_weight != vec3(0.f)) c += reflection_weight * trace_dir(reflected);
+    return c;
+  }
+
   static vec3 noise_color(const SolidNoise& n, vec3 p) {
     const float w = course_noise_weight(p, n.octaves, n.frequency, n.amplitude);
     return w * n.color1 + (1.f - w) * n.color2;
@@ -158,8 +302,9 @@ struct WhittedIntegrator {
     vec3 n = sp.normal;
     vec3 reflected = d - 2.f * glm::dot(d, n) * n;
     auto trace_dir = [&](vec3 w, float in_medium) {
-      bool hit;
-      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &hit, in_medium);
+      float coverage;
+      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage,
+                      in_medium);
     };
     if (!(m.refraction_index > 0.f)) return trace_dir(reflected, medium);
     const bool entering = glm::dot(d, sp.geometric_normal) < 0.f;

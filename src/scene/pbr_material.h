@@ -8,6 +8,7 @@
 
 #include "rayform/math/math.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -96,5 +97,14 @@ struct PbrMaterial {
   float sheen_roughness = 0.f;
   TextureSlot sheen_roughness_texture;  // A
 };
+
+// Every texture slot of a material, for code that treats them alike.
+inline std::array<const TextureSlot*, 14> pbr_texture_slots(const PbrMaterial& m) {
+  return {&m.base_color_texture,  &m.metallic_roughness_texture, &m.normal_texture,
+          &m.occlusion_texture,   &m.emissive_texture,           &m.specular_texture,
+          &m.specular_color_texture, &m.transmission_texture,    &m.thickness_texture,
+          &m.clearcoat_texture,   &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture,
+          &m.sheen_color_texture, &m.sheen_roughness_texture};
+}
 
 }  // namespace rayform
