@@ -162,7 +162,8 @@ float sheen_scaling(const PbrSurface& s, float n_dot_x) {
 
 bool has_sheen(const PbrSurface& s) { return max3(s.sheen_color) > 0.f; }
 
-float coat_fresnel(float coat_n_dot_v) { return coat_f0 + (1.f - coat_f0) * schlick_weight(coat_n_dot_v); }
+// Fc at |n_c.v| (the extension's fresnel_coat takes abs(VdotNc)).
+float coat_fresnel(float coat_n_dot_v) { return coat_f0 + (1.f - coat_f0) * schlick_weight(std::abs(coat_n_dot_v)); }
 
 }  // namespace
 
@@ -254,6 +255,8 @@ vec3 pbr_reflection(const PbrSurface& s, vec3 n, vec3 v, vec3 l) {
 vec3 pbr_specular_albedo(const PbrSurface& s, float n_dot_v) { return pbr_specular_albedo(s, n_dot_v, n_dot_v); }
 
 vec3 pbr_specular_albedo(const PbrSurface& s, float n_dot_v, float coat_n_dot_v) {
+  n_dot_v = std::abs(n_dot_v);
+  coat_n_dot_v = std::abs(coat_n_dot_v);
   vec2 ab = ggx_split_sum(n_dot_v, s.roughness);
   vec3 dielectric = dielectric_f0(s) * ab.x + vec3(s.specular * ab.y);
   vec3 metal = s.base * ab.x + vec3(ab.y);
@@ -273,6 +276,7 @@ vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v) {
 
 vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v, float coat_n_dot_v) {
   if (s.transmission <= 0.f || s.metallic >= 1.f) return vec3(0.f);
+  n_dot_v = std::abs(n_dot_v);
   float reflected = max3(fresnel_schlick(dielectric_f0(s), vec3(s.specular), n_dot_v));
   vec3 weight = s.transmission * (1.f - s.metallic) * (1.f - reflected) * s.base;
   if (has_sheen(s)) weight *= sheen_scaling(s, n_dot_v);

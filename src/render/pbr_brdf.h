@@ -22,6 +22,11 @@
 //   and the coat's own normal n_c and roughness, f cos = (f cos)_below (1 -
 //   clearcoat Fc) + clearcoat Fc D_c V_c (n_c.l) (the extension's
 //   fresnel_coat: the coat's lobe carries Fc at n_c.v, not at v.h).
+// Energy: the model is Appendix B's single-scattering one. Rough lobes lose
+// the energy that would scatter more than once between microfacets, and a
+// smooth dielectric seen at grazing angles reflects more than it receives
+// (over the hemisphere, the diffuse's weight 1 - F_d(v.h) and the lobe's
+// F_d do not add up to 1); tests/unit/pbr_brdf_test.cpp measures both.
 // Reciprocity: everything but the clearcoat is reciprocal (f(v, l) =
 // f(l, v)); the clearcoat's Fresnel weight depends on v alone, as the
 // extension defines it.
@@ -94,24 +99,25 @@ vec2 ggx_split_sum(float n_dot_v, float roughness);
 // below the surface.
 vec3 pbr_reflection(const PbrSurface& s, vec3 n, vec3 v, vec3 l);
 
-// The directional albedo of the specular layers seen from v (n.v =
-// n_dot_v): the integral over l of their f cos, the weight of one
-// mirror-direction ray that stands in for the specular reflection of the
-// surroundings (1 sample, deterministic). It is mix(F0_d A + F90_d B, base A +
-// B, metallic) (1 - max3(sheen_color) E_sheen(n.v)) (1 - clearcoat Fc) +
-// clearcoat Fc (A_c + B_c) with the split-sum terms above; the sheen lobe
-// (broad, grazing, like the diffuse) is not in it. The coat is taken as
-// seen at coat_n_dot_v = n_c.v, which the two-argument form takes equal to
-// n_dot_v.
+// The directional albedo of the specular layers seen from v at n.v =
+// n_dot_v (its absolute value used): the integral over l of their f cos,
+// the weight of one mirror-direction ray that stands in for the specular
+// reflection of the surroundings (1 sample, deterministic). It is
+// mix(F0_d A + F90_d B, base A + B, metallic) (1 - max3(sheen_color)
+// E_sheen(n.v)) (1 - clearcoat Fc) + clearcoat Fc (A_c + B_c) with the
+// split-sum terms above; the sheen lobe (broad, grazing, like the diffuse)
+// is not in it. The coat is taken as seen at coat_n_dot_v = n_c.v, which
+// the two-argument form takes equal to n_dot_v.
 vec3 pbr_specular_albedo(const PbrSurface& s, float n_dot_v);
 vec3 pbr_specular_albedo(const PbrSurface& s, float n_dot_v, float coat_n_dot_v);
 
 // The weight of one refraction ray through a transmissive surface seen at
-// n.v = n_dot_v: transmission (1 - metallic) base (1 - F_dielectric), under
-// the coat's (1 - clearcoat F_coat). F_dielectric is max3 of Schlick's
-// dielectric Fresnel at n.v (as the diffuse's weight above), and the sheen's
-// albedo scaling at n.v applies as to the rest of the base. The coat is
-// taken as seen at coat_n_dot_v, equal to n_dot_v in the two-argument form.
+// n.v = n_dot_v (its absolute value used): transmission (1 - metallic) base
+// (1 - F_dielectric), under the coat's (1 - clearcoat F_coat). F_dielectric
+// is max3 of Schlick's dielectric Fresnel at n.v (as in the diffuse's
+// weight above), and the sheen's albedo scaling at n.v applies as to the
+// rest of the base. The coat is taken as seen at coat_n_dot_v, equal to
+// n_dot_v in the two-argument form.
 vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v);
 vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v, float coat_n_dot_v);
 

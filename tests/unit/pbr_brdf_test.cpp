@@ -183,7 +183,7 @@ TEST(PbrBrdf, WhiteFurnace) {
   //   B weighs the diffuse by 1 - F_d(v.h), and for the diffuse's directions
   //   (l far from the mirror direction) v.h is large and F_d small, while
   //   the specular lobe reflects F_d at v.h = n.v: at n.v = 0.3 the diffuse
-  //   keeps 0.95 and the lobe adds F_d(0.3) = 0.2. That is the
+  //   keeps nearly all its weight and the lobe adds F_d(0.3) = 0.2. That is the
   //   specification's model (and the Sample Viewer's), kept as it is;
   // - a white sheen over the rough white dielectric (the base scaled by
   //   min(1 - E(n.v), 1 - E(n.l))) and a clearcoat over it ((1 - Fc) base +
