@@ -1,5 +1,6 @@
 #include "rayform/render/prepared_scene.h"
 
+#include "rayform/render/pbr_brdf.h"
 #include "rayform/scene/mesh_tangents.h"
 
 #include <tbb/parallel_for.h>
@@ -187,6 +188,10 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   tbb::parallel_for(size_t(0), scene.meshes.size(), [&](size_t i) {
     if (tangent_uv_set[i] >= 0) p.corner_tangents[i] = corner_tangents(scene.meshes[i], tangent_uv_set[i]);
   });
+  if (f.pbr) {  // the BRDF's tables, made once before the render's threads need them
+    ggx_split_sum(1.f, 1.f);
+    sheen_directional_albedo(1.f, 1.f);
+  }
   for (const Light& l : scene.lights) {
     p.lights.push_back(prepare_light(l));
     if (l.kind != Light::Kind::directional) f.point_lights = true;

@@ -264,12 +264,12 @@ struct WhittedIntegrator {
       float coverage;
       return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage);
     };
-    const float n_dot_v = std::max(glm::dot(n, v), 0.f);
+    const float n_dot_v = std::max(glm::dot(n, v), 0.f), coat_n_dot_v = glm::dot(s.clearcoat_normal, v);
     const vec3 reflected = d + 2.f * n_dot_v * n;
-    const vec3 specular = pbr_specular_albedo(s, n_dot_v) * point.occlusion;
+    const vec3 specular = pbr_specular_albedo(s, n_dot_v, coat_n_dot_v) * point.occlusion;
     vec3 reflection_weight = specular;
     if (s.transmission > 0.f && s.metallic < 1.f) {
-      const vec3 weight = pbr_transmission_weight(s, n_dot_v);
+      const vec3 weight = pbr_transmission_weight(s, n_dot_v, coat_n_dot_v);
       if (weight != vec3(0.f)) {
         vec3 refracted = d;  // a thin wall: straight through
         if (point.volume && s.ior > 1.f) {

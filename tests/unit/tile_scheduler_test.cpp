@@ -106,7 +106,7 @@ TEST(AdaptiveSampling, RoundEnds) {
   int traced = 0;
   auto flat = [&](vec2) {
     ++traced;
-    return TracedSample{vec3(0.5f), true};
+    return TracedSample{vec3(0.5f), 1.f, vec3(0.5f)};
   };
   sampler.first_round(0, 0, flat);
   const AdaptiveState st = sampler.complete(0, 0, flat);
