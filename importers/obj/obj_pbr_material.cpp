@@ -10,9 +10,6 @@ namespace rayform::obj {
 
 namespace {
 
-// MTL gives no sheen roughness; Blender's Principled BSDF default.
-constexpr float mtl_sheen_roughness = 0.5f;
-
 // -s / -o of a texture statement: uv' = uv * s + o.
 UvTransform transform_of(const tinyobj::texture_option_t& o) {
   UvTransform t;
@@ -121,9 +118,9 @@ Material pbr_material(const tinyobj::material_t& tm, const std::set<std::string>
   if (base_texture != invalid) p.base_color_texture = TextureSlot{base_texture, 0, transform_of(tm.diffuse_texopt)};
 
   const int packed = packed_metallic_roughness(tm, textures);
+  // Without a texture, a statement left out is the extension's default 0.
   p.roughness = packed != invalid && !tm.roughness_texname.empty() ? 1.f : tm.roughness;
   p.metallic = packed != invalid && !tm.metallic_texname.empty() ? 1.f : tm.metallic;
-  // Without a texture, a statement left out is the extension's default 0.
   if (packed != invalid)
     p.metallic_roughness_texture =
         TextureSlot{packed, 0, transform_of(tm.roughness_texname.empty() ? tm.metallic_texopt : tm.roughness_texopt)};

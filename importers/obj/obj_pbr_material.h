@@ -29,6 +29,9 @@
 
 namespace rayform::obj {
 
+// MTL gives no sheen roughness: the reader takes Blender's Principled BSDF default.
+inline constexpr float mtl_sheen_roughness = 0.5f;
+
 // Whether the material's statements (MtlLibrary::keywords) use the extension.
 bool is_pbr_material(const std::set<std::string>& keywords);
 
