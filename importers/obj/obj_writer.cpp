@@ -38,7 +38,12 @@ class ObjWriter {
     extent_ = scene_extent(scene);
     for (const Mesh& m : scene.meshes) any_colors_ |= !m.colors.empty();
     // Kd/Ks/Ns of every material (metallic-roughness ones approximated).
-    for (const Material& m : scene.materials) phong_.push_back(phong_approximation(m));
+    // Kd is the base colour for MTL's PBR statements (obj_pbr_material.h),
+    // also where the Phong approximation darkens it for transmission.
+    for (const Material& m : scene.materials) {
+      phong_.push_back(phong_approximation(m));
+      if (m.model == Material::Model::metallic_roughness) phong_.back().diffuse = vec3(m.pbr.base_color);
+    }
   }
 
   SaveResult write() {
@@ -191,6 +196,7 @@ class ObjWriter {
                                   "sheen"};
     for (const std::string& field : pbr_fields_lost_in_phong(m))
       if (!held.count(field)) pbr_lost_[field].insert(m.name);
+    if (p.transmission > 0.f) pbr_lost_["transmission"].insert(m.name);
     // A texture of the slot on uv set 0 (OBJ has one), else "" and noted.
     auto file_of = [&](const TextureSlot& slot, const char* field) -> std::string {
       if (!slot.used()) return {};
