@@ -18,6 +18,9 @@
 
 #include "rayform/scene/scene.h"
 
+#include <string>
+#include <vector>
+
 namespace rayform {
 
 // Reflectance at normal incidence of a dielectric of index 1.5, glTF's default.
@@ -39,5 +42,24 @@ struct PbrValues {
   float metallic = 0.f, roughness = 1.f;
 };
 PbrValues phong_to_pbr(vec3 diffuse, vec3 specular, float shininess);
+
+// The Phong material that stands for a metallic-roughness one (Model::
+// metallic_roughness) in formats that hold only Phong; a Phong material is
+// returned as it is. Kept: the name, sidedness and unlit; diffuse K = base
+// colour with the base colour texture (uv set 0 only) and its transform,
+// modulating; Ks and n from pbr_to_phong with F0_dielectric =
+// ((ior - 1) / (ior + 1))^2 x min(specular_color, 1) x specular (ior 0: 1);
+// clearcoat folded in (Ks += clearcoat x 0.04 (1 - clearcoat_roughness)^2,
+// n the sharper exponent); transmission as refraction of index `ior`
+// (Ks = max(Ks, transmission x base), K x (1 - transmission)); emission =
+// emissive x emissive_strength; MASK as the cut-off alpha_cutoff / base alpha
+// (a base alpha of 0: every texel a hole). What is lost:
+// pbr_fields_lost_in_phong.
+Material phong_approximation(const Material& m);
+
+// What phong_approximation cannot hold of a metallic-roughness material, each
+// named for messages ("normal texture", "sheen", ...), in PbrMaterial's order;
+// empty for a Phong material.
+std::vector<std::string> pbr_fields_lost_in_phong(const Material& m);
 
 }  // namespace rayform

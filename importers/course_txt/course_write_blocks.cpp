@@ -151,6 +151,11 @@ void CourseWriter::write_materials(std::ostringstream& o) {
   context_.note_names(
       "materials", modulated,
       ": the diffuse colour that multiplies the texture is dropped (a course texture replaces the colour)");
+  context_.note_names("materials", pbr_approximated_,
+                      ": metallic-roughness approximated as Phong (diffuse = base colour and its texture; specular "
+                      "and shininess from metallic, roughness, ior, specular and clearcoat; transmission as "
+                      "refraction)");
+  for (const auto& [field, names] : pbr_lost_) context_.note_names("materials", names, ": " + field + " dropped");
   context_.note_names("materials", bumps_dropped, ": bump maps dropped (2012 dialect; write --dialect 2019)");
   if (need_default_)
     context_.note("shapes without a material follow a MaterialIndex: they use an added white material " +

@@ -8,6 +8,7 @@
 #include "rayform/image/output_files.h"
 #include "rayform/base/error.h"
 #include "rayform/scene/scene_defaults.h"
+#include "rayform/importers/material_approximation.h"
 #include "rayform/importers/text_format.h"
 
 #include <cmath>
@@ -39,6 +40,7 @@ SaveResult CourseWriter::write() {
         "the source has no light: added a white directional headlight along the view (the course would light a "
         "scene without lights by an ambient light of 1)");
   }
+  approximate_pbr_materials();
   dialect_ = options_.dialect ? *options_.dialect : needed_dialect();
 
   // The Group first: it decides the materials block (a default material).
@@ -57,6 +59,17 @@ SaveResult CourseWriter::write() {
     if (ec) throw Error(d + ": cannot create folder: " + ec.message());
   }
   return SaveResult{context_.out.commit(), stored_triangles_};
+}
+
+// The course's Phong model in place of each metallic-roughness material
+// (material_approximation.h), and what that could not hold, by field.
+void CourseWriter::approximate_pbr_materials() {
+  for (Material& m : s_.materials) {
+    if (m.model != Material::Model::metallic_roughness) continue;
+    pbr_approximated_.insert(m.name);
+    for (const std::string& field : pbr_fields_lost_in_phong(m)) pbr_lost_[field].insert(m.name);
+    m = phong_approximation(m);
+  }
 }
 
 // ---- dialect -------------------------------------------------------------------

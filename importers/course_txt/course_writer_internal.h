@@ -45,6 +45,7 @@ class CourseWriter {
 
  private:
   // ---- course_writer.cpp --------------------------------------------------------
+  void approximate_pbr_materials();
   bool raw_up_matters(const Camera& c) const;
   CourseDialect needed_dialect();
   std::string unique_file(const std::string& base, const std::string& ext);
@@ -89,6 +90,8 @@ class CourseWriter {
   std::map<std::string, std::string> mesh_texts_;  // OBJ text -> file
   std::set<std::string> used_files_;
   std::vector<std::string> folders_;
+  std::set<std::string> pbr_approximated_;                 // metallic-roughness materials written as Phong
+  std::map<std::string, std::set<std::string>> pbr_lost_;  // what of them the course lost: field -> materials
   std::set<std::string> normals_changed_, baked_uvs_, srgb_, half_texel_, repeat_, nearest_, alpha_dropped_;
 };
 

@@ -116,6 +116,8 @@ int GltfWriter::add_light(int li) {
     gl.spot.innerConeAngle = double(radians(l.spot_inner_deg));
     gl.spot.outerConeAngle = double(radians(l.spot_outer_deg));
   }
+  // The Scene's colour c = C I / pi (scene.h): I carries the pi.
+  intensity *= pi;
   gl.color = nice_vector({color.r, color.g, color.b});
   gl.intensity = nice(intensity);
   Value::Object ex;

@@ -84,7 +84,8 @@ GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material)
     c = uint32_t(remap[c]);
   }
   std::vector<vec3> pos, nor, col;
-  std::vector<vec2> uv;
+  std::vector<vec2> uv, uv1;
+  std::vector<vec4> tan;
   for (uint32_t i : used) {
     pos.push_back(m.positions[i]);
     if (m.normals.size() == m.positions.size()) {
@@ -98,7 +99,11 @@ GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material)
       }
       nor.push_back(n);
     }
+    // glTF's v runs down the image, the Scene's up.
     if (m.uvs.size() == m.positions.size()) uv.push_back(vec2(m.uvs[i].x, 1.f - m.uvs[i].y));
+    if (m.uvs1.size() == m.positions.size()) uv1.push_back(vec2(m.uvs1[i].x, 1.f - m.uvs1[i].y));
+    // Tangents as the Scene holds them: glTF's TANGENT (bitangent = w cross(normal, tangent)).
+    if (m.tangents.size() == m.positions.size() && m.normals.size() == m.positions.size()) tan.push_back(m.tangents[i]);
     if (m.colors.size() == m.positions.size()) col.push_back(m.colors[i]);
   }
   // Equal data (e.g. one mesh read back as a copy per material) is stored once.
@@ -110,6 +115,8 @@ GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material)
   append(pos.data(), pos.size() * sizeof(vec3));
   append(nor.data(), nor.size() * sizeof(vec3));
   append(uv.data(), uv.size() * sizeof(vec2));
+  append(uv1.data(), uv1.size() * sizeof(vec2));
+  append(tan.data(), tan.size() * sizeof(vec4));
   append(col.data(), col.size() * sizeof(vec3));
   append(corners.data(), corners.size() * sizeof(uint32_t));
   if (auto it = stored_.find(key); it != stored_.end()) return it->second;
@@ -120,6 +127,14 @@ GltfWriter::Geometry GltfWriter::mesh_geometry(const Mesh& m, int only_material)
   if (!uv.empty()) {
     int view = add_view(uv.data(), uv.size() * sizeof(vec2), array_buffer);
     g.uv = add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, uv.size(), TINYGLTF_TYPE_VEC2);
+  }
+  if (!uv1.empty()) {
+    int view = add_view(uv1.data(), uv1.size() * sizeof(vec2), array_buffer);
+    g.uv1 = add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, uv1.size(), TINYGLTF_TYPE_VEC2);
+  }
+  if (!tan.empty()) {
+    int view = add_view(tan.data(), tan.size() * sizeof(vec4), array_buffer);
+    g.tangent = add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, tan.size(), TINYGLTF_TYPE_VEC4);
   }
   if (!col.empty()) g.color = add_vec3s(col, false);
   if (pos.size() < 65535) {  // 65535 is the restart value: not an index
@@ -141,9 +156,15 @@ tinygltf::Primitive GltfWriter::primitive(const Geometry& g, int material) {
   p.attributes["POSITION"] = g.position;
   if (g.normal >= 0) p.attributes["NORMAL"] = g.normal;
   if (g.uv >= 0) p.attributes["TEXCOORD_0"] = g.uv;
+  if (g.uv1 >= 0) p.attributes["TEXCOORD_1"] = g.uv1;
+  if (g.tangent >= 0) p.attributes["TANGENT"] = g.tangent;
   if (g.color >= 0) p.attributes["COLOR_0"] = g.color;
-  if (g.uv < 0 && material >= 0 && model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.index >= 0)
-    material = untextured(material);
+  // A texture needs its uv set on every primitive that uses the material.
+  if (material >= 0) {
+    const int needed = uv_sets_needed_[size_t(material)];
+    const int present = (g.uv >= 0 ? uv_set_0 : 0) | (g.uv1 >= 0 ? uv_set_1 : 0);
+    if (needed & ~present) material = untextured(material);
+  }
   p.material = material;
   return p;
 }

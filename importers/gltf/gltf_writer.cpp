@@ -27,6 +27,7 @@ GltfWriter::GltfWriter(const Scene& scene, const std::string& path, const GltfWr
 SaveResult GltfWriter::write() {
   model_.asset.version = "2.0";
   model_.asset.generator = "rayform convert";
+  find_data_textures();
   for (size_t i = 0; i < scene_.materials.size(); ++i) add_material(int(i));
 
   tinygltf::Scene gs;
@@ -69,7 +70,8 @@ void GltfWriter::report() {
   if (zero_normals_)
     context_.note(std::to_string(zero_normals_) +
                   " zero-length vertex normal(s) written as (0, 0, 1) (glTF requires unit normals)");
-  if (!scene_.materials.empty())
+  if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                  [](const Material& m) { return m.model == Material::Model::phong; }))
     context_.note(
         "Phong materials converted to metallic-roughness (docs/convert.md); the exact Phong values are kept in the "
         "material extras");

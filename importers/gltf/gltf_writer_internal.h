@@ -46,6 +46,9 @@ std::vector<double> nice_vector(std::initializer_list<float> fs);
 // extras = { "rayform": obj }
 Value rayform_extras(Value::Object obj);
 
+// Bits of the uv sets a glTF material's textures use.
+inline constexpr int uv_set_0 = 1, uv_set_1 = 2;
+
 // ---- the writer -----------------------------------------------------------------
 
 // One primitive to write: a shape with its material (and, for planes, the
@@ -73,7 +76,7 @@ class GltfWriter {
 
   // ---- gltf_write_geometry.cpp --------------------------------------------------
   struct Geometry {
-    int position = -1, normal = -1, uv = -1, color = -1, indices = -1;
+    int position = -1, normal = -1, uv = -1, uv1 = -1, tangent = -1, color = -1, indices = -1;
     size_t triangles = 0;
   };
   int add_view(const void* data, size_t bytes, int target);
@@ -95,7 +98,11 @@ class GltfWriter {
   // ---- gltf_write_materials.cpp -------------------------------------------------
   int add_sampler(const Texture& t);
   int add_texture(int ti);
+  void find_data_textures();
   tinygltf::Material make_material(int mi, bool textured);
+  tinygltf::Material make_pbr_material(int mi, bool textured);
+  Value texture_transform(const UvTransform& t);
+  Value::Object texture_object(const TextureSlot& slot, bool textured, int* uv_sets);
   void add_material(int mi);
   int untextured(int gi);
   void use_extension(const std::string& e);
@@ -126,6 +133,12 @@ class GltfWriter {
   std::map<std::pair<int, int>, Geometry> mesh_geometry_;
   std::map<std::string, Geometry> stored_;  // by content
   std::map<int, int> untextured_;           // glTF material -> its copy without texture
+  // Per glTF material, in order (make_material pushes it): the uv sets its
+  // textures use (uv_set_0 | uv_set_1).
+  std::vector<int> uv_sets_needed_;
+  // Scene textures that only data slots of metallic-roughness materials use
+  // (metallic-roughness, normal, occlusion, ...): glTF reads those linear.
+  std::set<int> data_textures_;
   int untextured_uses_ = 0;
   std::map<int, int> textures_;
   std::map<std::tuple<int, int, int>, int> samplers_;

@@ -4,8 +4,8 @@
 
 namespace rayform::obj {
 
-std::set<std::string> materials_with_kd(const std::string& text) {
-  std::set<std::string> out;
+std::map<std::string, std::set<std::string>> mtl_keywords(const std::string& text) {
+  std::map<std::string, std::set<std::string>> out;
   std::istringstream in(text);
   std::string line, current;
   while (std::getline(in, line)) {
@@ -14,8 +14,12 @@ std::set<std::string> materials_with_kd(const std::string& text) {
     size_t b = line.find_first_not_of(" \t");
     if (b == std::string::npos) continue;
     std::string t = line.substr(b);
-    if (t.size() > 7 && t.compare(0, 6, "newmtl") == 0 && (t[6] == ' ' || t[6] == '\t')) current = t.substr(7);
-    else if (t.size() > 2 && t[0] == 'K' && t[1] == 'd' && (t[2] == ' ' || t[2] == '\t')) out.insert(current);
+    if (t.size() > 7 && t.compare(0, 6, "newmtl") == 0 && (t[6] == ' ' || t[6] == '\t')) {
+      current = t.substr(7);
+      continue;
+    }
+    const size_t end = t.find_first_of(" \t");
+    if (end != std::string::npos) out[current].insert(t.substr(0, end));  // a statement with a value
   }
   return out;
 }

@@ -17,12 +17,16 @@ struct MtlLibrary {
   std::vector<tinyobj::material_t> materials;
   std::map<std::string, int> names;
   std::vector<std::filesystem::path> dirs;  // per material: folder of its .mtl (textures resolve there)
-  std::vector<bool> has_kd;                 // per material: the .mtl gave Kd
+  // Per material: the statements its .mtl gave ("Kd", "Pr", "map_Pm", ...),
+  // since tinyobjloader fills the ones absent with defaults and does not say.
+  std::vector<std::set<std::string>> keywords;
+  bool has(size_t material, const char* keyword) const { return keywords[material].count(keyword) > 0; }
 };
 
-// Scans MTL text for the materials that set Kd (tinyobjloader does not say),
-// following its reading of `newmtl`: the name is the rest of the line.
-std::set<std::string> materials_with_kd(const std::string& text);
+// Scans MTL text for the statements (a line's first word) each material
+// gives, by material name, following tinyobjloader's reading of `newmtl`:
+// the name is the rest of the line.
+std::map<std::string, std::set<std::string>> mtl_keywords(const std::string& text);
 
 // Hands tinyobjloader the materials read beforehand from every mtllib (its
 // own reader would take only the first file of a line and no spaces or '\').

@@ -4,6 +4,7 @@
 #include "rayform/importers/obj/mtl_library.h"
 #include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/obj_pbr_material.h"
 #include "rayform/importers/obj/obj_side_files.h"
 #include "rayform/importers/obj/obj_smooth_normals.h"
 #include "rayform/importers/obj/obj_vertex_weld.h"
@@ -33,8 +34,10 @@ namespace {
 
 using obj::BadIndex;
 using obj::find_bad_index;
-using obj::materials_with_kd;
+using obj::is_pbr_material;
+using obj::mtl_keywords;
 using obj::MtlLibrary;
+using obj::pbr_material;
 using obj::PreloadedMaterials;
 using obj::resolve_beside;
 using obj::Resolved;
@@ -271,14 +274,14 @@ class ObjReader {
       return;
     }
     std::string text = ss.str();
-    std::set<std::string> kd = materials_with_kd(text);
+    std::map<std::string, std::set<std::string>> keywords = mtl_keywords(text);
     std::istringstream in(text);
     std::string w, e;
     size_t first = lib_.materials.size();
     tinyobj::LoadMtl(&lib_.names, &lib_.materials, &in, &w, &e);
     for (size_t i = first; i < lib_.materials.size(); ++i) {
       lib_.dirs.push_back(file.parent_path());
-      lib_.has_kd.push_back(kd.count(lib_.materials[i].name) > 0);
+      lib_.keywords.push_back(keywords[lib_.materials[i].name]);
     }
     std::istringstream wl(w + e);
     std::string l;
@@ -286,27 +289,36 @@ class ObjReader {
       if (!trim(l).empty()) warn(file.string() + ": " + trim(l));
   }
 
-  // A texture of a material: resolved beside its .mtl; missing = warning.
-  int texture(const std::string& name, const fs::path& mtl_dir, const std::string& material, const char* slot,
-              bool srgb, bool clamp) {
-    if (name.empty()) return invalid;
+  // The path of a material's texture file, resolved beside its .mtl; "" when
+  // it cannot be found (warned about).
+  std::string texture_path(const std::string& name, const fs::path& mtl_dir, const std::string& material,
+                           const char* slot) {
     Resolved r = resolve_beside(mtl_dir, name);
     if (!r.found) {
       warn(path_ + ": material '" + material + "': cannot find " + slot + " texture '" + name + "' (looked in " +
            mtl_dir.string() + "); the material has no " + slot + " texture");
-      return invalid;
+      return {};
     }
     if (std::string problem = referenced_file_problem(path_, slot, name, r.path, options_.access); !problem.empty())
       throw Error(path_ + ": material '" + material + "': " + problem);
     if (r.by_name_only)
       warn(path_ + ": material '" + material + "': " + slot + " texture '" + name + "' not found as written; using " +
            r.path.string());
-    std::string key = r.path.lexically_normal().string() + (srgb ? "|srgb" : "|raw") + (clamp ? "|clamp" : "|repeat");
+    return r.path.lexically_normal().string();
+  }
+
+  // A texture of a material: resolved beside its .mtl; missing = warning.
+  int texture(const std::string& name, const fs::path& mtl_dir, const std::string& material, const char* slot,
+              bool srgb, bool clamp) {
+    if (name.empty()) return invalid;
+    const std::string path = texture_path(name, mtl_dir, material, slot);
+    if (path.empty()) return invalid;
+    std::string key = path + (srgb ? "|srgb" : "|raw") + (clamp ? "|clamp" : "|repeat");
     auto it = texture_cache_.find(key);
     if (it != texture_cache_.end()) return it->second;
     Texture t;
     t.name = name;
-    t.path = r.path.lexically_normal().string();
+    t.path = path;
     t.srgb = srgb;
     t.lookup = Texture::Lookup::standard;
     t.wrap_u = t.wrap_v = clamp ? Texture::Wrap::clamp : Texture::Wrap::repeat;
@@ -317,10 +329,27 @@ class ObjReader {
     return index;
   }
 
+  // How the PBR materials of the .mtl in `dir` find their textures.
+  obj::MtlTextures& pbr_textures(const fs::path& dir) {
+    pbr_textures_.resolve = [this, dir](const std::string& name, const char* slot) {
+      return texture_path(name, dir, current_material_, slot);
+    };
+    pbr_textures_.file_texture = [this, dir](const std::string& name, const char* slot, bool srgb, bool clamp) {
+      return texture(name, dir, current_material_, slot, srgb, clamp);
+    };
+    pbr_textures_.add = [this](Texture t) {
+      scene_.textures.push_back(std::move(t));
+      return int(scene_.textures.size()) - 1;
+    };
+    pbr_textures_.warn = [this](const std::string& w) { warn(path_ + ": " + w); };
+    return pbr_textures_;
+  }
+
   void convert_materials() {
     for (size_t i = 0; i < lib_.materials.size(); ++i) {
       const tinyobj::material_t& tm = lib_.materials[i];
       const fs::path& dir = lib_.dirs[i];
+      current_material_ = tm.name;
       Material m;
       m.name = tm.name;
       m.texture_modulates = true;
@@ -331,8 +360,12 @@ class ObjReader {
       // Kd absent: with a map_Kd the texel is the colour (Kd = 1, as
       // exporters that leave Kd out mean); without one, the default grey.
       // (tinyobjloader would give 0.6 or black.)
-      if (lib_.has_kd[i]) m.diffuse = vec3(tm.diffuse[0], tm.diffuse[1], tm.diffuse[2]);
+      if (lib_.has(i, "Kd")) m.diffuse = vec3(tm.diffuse[0], tm.diffuse[1], tm.diffuse[2]);
       else m.diffuse = vec3(m.diffuse_texture != invalid ? 1.f : default_grey);
+      if (is_pbr_material(lib_.keywords[i])) {
+        scene_.materials.push_back(pbr_material(tm, lib_.keywords[i], m.diffuse, m.diffuse_texture, pbr_textures(dir)));
+        continue;
+      }
       if (m.diffuse_texture != invalid) {
         // map_Kd -s/-o: uv' = uv * s + o, the shader's transform with no rotation.
         m.uv_transform.scale = vec2(tm.diffuse_texopt.scale[0], tm.diffuse_texopt.scale[1]);
@@ -572,6 +605,8 @@ class ObjReader {
   MtlLibrary lib_;
   Scene scene_;
   std::map<std::string, int> texture_cache_;
+  obj::MtlTextures pbr_textures_;  // the PBR materials' textures, packed ones included
+  std::string current_material_;   // the material being converted, for messages
   int default_material_ = invalid;
   int mesh_node_material_ = invalid;
   bool has_colors_ = false;

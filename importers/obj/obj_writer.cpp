@@ -1,5 +1,7 @@
 #include "rayform/importers/obj/obj_writer.h"
 
+#include "rayform/importers/material_approximation.h"
+#include "rayform/importers/obj/obj_pbr_material.h"
 #include "rayform/importers/writer_context.h"
 #include "rayform/importers/scene_writer.h"
 #include "rayform/base/error.h"
@@ -35,6 +37,13 @@ class ObjWriter {
       : scene_(scene), options_(options), context_(scene, path, options.side_folder, messages) {
     extent_ = scene_extent(scene);
     for (const Mesh& m : scene.meshes) any_colors_ |= !m.colors.empty();
+    // Kd/Ks/Ns of every material (metallic-roughness ones approximated).
+    // Kd is the base colour for MTL's PBR statements (obj_pbr_material.h),
+    // also where the Phong approximation darkens it for transmission.
+    for (const Material& m : scene.materials) {
+      phong_.push_back(phong_approximation(m));
+      if (m.model == Material::Model::metallic_roughness) phong_.back().diffuse = vec3(m.pbr.base_color);
+    }
   }
 
   SaveResult write() {
@@ -122,7 +131,7 @@ class ObjWriter {
         o << "\nnewmtl " << default_name_ << "\nKd 1 1 1\nKs 0 0 0\nNs 0\nillum 1\n";
         continue;
       }
-      const Material& m = scene_.materials[size_t(mi)];
+      const Material& m = phong_[size_t(mi)];
       std::string tex = m.diffuse_texture != invalid ? texture_file(m.diffuse_texture) : std::string();
       vec3 kd = m.diffuse;
       if (!tex.empty() && !m.texture_modulates) {
@@ -155,8 +164,80 @@ class ObjWriter {
         std::string bump = texture_file(m.bump_texture);
         if (!bump.empty()) o << "map_Bump " << bump << "\n";
       }
+      if (scene_.materials[size_t(mi)].model == Material::Model::metallic_roughness)
+        write_pbr_statements(scene_.materials[size_t(mi)], o);
     }
     return o.str();
+  }
+
+  // A texture statement's options and file: -s / -o of its transform (a
+  // rotation cannot be said: noted), -clamp, then `extra` (e.g. -imfchan g).
+  void texture_statement(const char* keyword, const TextureSlot& slot, const std::string& file,
+                         const std::string& material, const std::string& extra, std::ostringstream& o) {
+    const Texture& t = scene_.textures[size_t(slot.texture)];
+    o << keyword;
+    if (!slot.transform.is_identity()) {
+      if (slot.transform.rotation != 0.f) pbr_lost_["rotated texture transforms"].insert(material);
+      o << " -s " << format_float(slot.transform.scale.x) << " " << format_float(slot.transform.scale.y) << " 1"
+        << " -o " << format_float(slot.transform.offset.x) << " " << format_float(slot.transform.offset.y) << " 0";
+    }
+    if (t.wrap_u == Texture::Wrap::clamp) o << " -clamp on";
+    o << extra << " " << file << "\n";
+  }
+
+  // MTL's PBR extension (obj_pbr_material.h reads it back) after the Kd/Ks/Ns
+  // approximation of a metallic-roughness material: Pr, Pm, their texture
+  // as map_Pr / map_Pm of its G and B channels (-imfchan), map_Ke, norm, d,
+  // Ni, Pc / Pcr, Ps; what MTL cannot say is noted.
+  void write_pbr_statements(const Material& m, std::ostringstream& o) {
+    const PbrMaterial& p = m.pbr;
+    pbr_written_.insert(m.name);
+    std::set<std::string> held = {"metallic-roughness texture", "normal texture", "emissive texture", "alpha blending",
+                                  "sheen"};
+    for (const std::string& field : pbr_fields_lost_in_phong(m))
+      if (!held.count(field)) pbr_lost_[field].insert(m.name);
+    if (p.transmission > 0.f) pbr_lost_["transmission"].insert(m.name);
+    // A texture of the slot on uv set 0 (OBJ has one), else "" and noted.
+    auto file_of = [&](const TextureSlot& slot, const char* field) -> std::string {
+      if (!slot.used()) return {};
+      if (slot.texcoord != 0) {
+        pbr_lost_[std::string(field) + " on the second uv set"].insert(m.name);
+        return {};
+      }
+      return texture_file(slot.texture);
+    };
+    o << "Pr " << format_float(p.roughness) << "\n";
+    o << "Pm " << format_float(p.metallic) << "\n";
+    if (std::string f = file_of(p.metallic_roughness_texture, "metallic-roughness texture"); !f.empty()) {
+      texture_statement("map_Pr", p.metallic_roughness_texture, f, m.name, " -imfchan g", o);
+      texture_statement("map_Pm", p.metallic_roughness_texture, f, m.name, " -imfchan b", o);
+      packed_split_.insert(m.name);
+      if (p.roughness != 1.f || p.metallic != 1.f)
+        pbr_lost_["metallic and roughness factors beside their texture"].insert(m.name);
+    }
+    if (std::string f = file_of(p.emissive_texture, "emissive texture"); !f.empty())
+      texture_statement("map_Ke", p.emissive_texture, f, m.name, "", o);
+    if (std::string f = file_of(p.normal_texture, "normal texture"); !f.empty())
+      texture_statement("norm", p.normal_texture, f, m.name,
+                        p.normal_scale != 1.f ? " -bm " + format_float(p.normal_scale) : std::string(), o);
+    if (p.alpha_mode == PbrMaterial::AlphaMode::blend) {
+      o << "d " << format_float(std::clamp(p.base_color.a, 0.f, 1.f)) << "\n";
+      if (p.base_color_texture.used()) {
+        if (std::string f = file_of(p.base_color_texture, "base colour texture"); !f.empty())
+          o << "map_d " << f << "\n";
+      }
+    }
+    if (p.ior != PbrMaterial{}.ior && p.transmission == 0.f) o << "Ni " << format_float(p.ior) << "\n";
+    if (p.clearcoat > 0.f) {
+      o << "Pc " << format_float(p.clearcoat) << "\n";
+      o << "Pcr " << format_float(p.clearcoat_roughness) << "\n";
+    }
+    const float sheen = std::max({p.sheen_color.r, p.sheen_color.g, p.sheen_color.b});
+    if (sheen > 0.f) {
+      o << "Ps " << format_float(sheen) << "\n";
+      if (p.sheen_color != vec3(sheen) || p.sheen_roughness != obj::mtl_sheen_roughness)
+        sheen_approximated_.insert(m.name);
+    }
   }
 
   // ---- geometry ------------------------------------------------------------------------
@@ -180,7 +261,7 @@ class ObjWriter {
       }
       const UvTransform* t = nullptr;
       if (mat >= 0 && size_t(mat) < scene_.materials.size()) {
-        const Material& mm = scene_.materials[size_t(mat)];
+        const Material& mm = phong_[size_t(mat)];
         if (mm.diffuse_texture != invalid && mm.uv_transform.rotation != 0.f) {
           t = &mm.uv_transform;
           baked_.insert(mm.name);
@@ -380,6 +461,17 @@ class ObjWriter {
     context_.note_names("materials", one_side_lit_,
                         ": back faces will be shaded with their normals reversed towards "
                         "the viewer, as OBJ materials are (the source shades them with the normal as given)");
+    context_.note_names("materials", pbr_written_,
+                        ": metallic-roughness written as Kd/Ks/Ns (Ks and Ns from metallic, roughness, ior, specular "
+                        "and clearcoat) and as MTL's PBR extension (Pr, Pm, Ke, norm, d, Ni, Pc, Pcr, Ps), which "
+                        "rayform and Blender read back");
+    context_.note_names("materials", packed_split_,
+                        ": the metallic-roughness texture written as map_Pr -imfchan g and map_Pm -imfchan b (one "
+                        "file, its green and blue channels); readers that ignore -imfchan read its luminance");
+    context_.note_names("materials", sheen_approximated_,
+                        ": sheen written as Ps, the sheen colour's largest component (MTL has neither a sheen colour "
+                        "nor a sheen roughness)");
+    for (const auto& [field, names] : pbr_lost_) context_.note_names("materials", names, ": " + field + " dropped");
     context_.note_names("textures", course_lookup_,
                         ": the course's texel centres (on whole numbers) are not expressible; "
                         "OBJ readers sample half a texel off");
@@ -397,6 +489,9 @@ class ObjWriter {
   std::string default_name_;
   bool used_default_ = false, any_colors_ = false, faceted_ = false, baked_transforms_ = false, nested_ = false;
   std::set<int> used_materials_;
+  std::vector<Material> phong_;  // per Scene material: as the Phong model (material_approximation.h)
+  std::set<std::string> pbr_written_, packed_split_, sheen_approximated_;
+  std::map<std::string, std::set<std::string>> pbr_lost_;  // what MTL could not hold: field -> materials
   std::map<int, std::string> textures_;
   std::set<std::string> used_files_;
   std::map<std::array<uint32_t, 6>, uint32_t> positions_;
