@@ -144,7 +144,10 @@ bool pbr_as_written(const tinygltf::Material& gm, const Value& ex) {
   return same;
 }
 
-// Materials: the Phong values, if the PBR values are still those written.
+// Materials: a material rayform wrote from the course's Phong model (its
+// "phong" extra) is that Phong material again, if the PBR values are still
+// those written; other extras restore the course's fields either model reads
+// (sidedness, noise, ...).
 void apply_material_extras(const ExtrasInput& in) {
   const tinygltf::Model& model = in.model;
   const GltfSceneMapping& map = in.map;
@@ -165,6 +168,7 @@ void apply_material_extras(const ExtrasInput& in) {
       get_vec3(ph, "diffuse", &m.diffuse);
       get_vec3(ph, "specular", &m.specular);
       get_float(ph, "shininess", &m.shininess);
+      m.model = Material::Model::phong;
     }
     get_bool(*ex, "texture_modulates", &m.texture_modulates);
     get_bool(*ex, "two_sided_lighting", &m.two_sided_lighting);

@@ -27,7 +27,8 @@ struct GltfSceneMapping {
 };
 
 // Applies the "rayform" extras of a file rayform wrote: analytic shapes
-// replace their tessellations, Phong values replace the converted ones,
+// replace their tessellations, Phong materials (a "phong" extra) replace the
+// metallic-roughness ones read,
 // cameras, lights, textures and the background get back what glTF could not
 // say. Each extra is checked against the standard data it annotates (a sphere's
 // vertices must still lie on it, a material's PBR values must be the ones

@@ -1,42 +1,43 @@
-// The material mapping between glTF's physically based materials and the
-// Scene's Phong material, both directions, and KHR_texture_transform's uv
-// transform in the Scene's flipped uv convention. Textures themselves are the
-// reader's and writer's business; this file maps factors.
+// glTF materials as the Scene's metallic-roughness material (Material::Model::
+// metallic_roughness, Material::pbr: the file's meaning, no approximation for
+// the core model and the extensions below), and KHR_texture_transform's uv
+// transform in the Scene's flipped uv convention. This file reads factors;
+// texture references are the reader's business (its texture cache), listed
+// here so that every part names them alike (gltf_material_textures).
 //
-// Reading (metallic-roughness to Phong, a documented approximation: the
-// renderer has no environment to reflect):
-//   K  = baseColorFactor x baseColorTexture texel: the diffuse colour, also
-//        for metals, which would otherwise render black;
-//   Ks = F0 (1 - roughness)^2, F0 = mix(F0_dielectric, baseColorFactor.rgb,
-//        metallic), F0_dielectric = 0.04 (ior 1.5): Schlick's reflectance at
-//        normal incidence, faded out on rough surfaces whose (unnormalised)
-//        Phong lobe would be a broad glow;
-//   n  = (2 / alpha^2 - 2) / 4, alpha = roughness^2, clamped to [1, 1024]:
-//        the Blinn-Phong exponent of a microfacet lobe of width alpha
-//        (Walter et al. 2007), divided by 4 because the shader's lobe is
-//        (L.R)^n and the angle between L and R is twice that between N and H.
-// Extensions that change colour, each onto those terms:
-//   KHR_materials_emissive_strength  emission x emissiveStrength;
-//   KHR_materials_ior                F0_dielectric = ((ior - 1) / (ior + 1))^2;
-//   KHR_materials_specular           F0_dielectric x specularColorFactor
-//                                    (clamped to 1) x specularFactor;
-//   KHR_materials_unlit              drawn unlit: the surface colour K alone;
-//   KHR_materials_transmission       refraction with index ior (1.5 by
-//                                    default), weighted by Ks = max(Ks,
-//                                    transmission x base) and K x (1 - transmission);
-//   KHR_materials_clearcoat          a second lobe folded into the first:
-//                                    Ks += clearcoat x 0.04 (1 - clearcoatRoughness)^2,
-//                                    n = the sharper of the two exponents;
-//   KHR_materials_pbrSpecularGlossiness (the older workflow): K = diffuseFactor,
-//                                    F0 = specularFactor, roughness = 1 - glossiness;
-// others (sheen, volume, iridescence, anisotropy, dispersion, variants) are
-// ignored and said so once. Textures of these extensions are not sampled.
+// What a material gets (Material):
+//   model = metallic_roughness; pbr from the file:
+//     pbrMetallicRoughness        base_color, metallic, roughness
+//     normalTexture.scale         normal_scale
+//     occlusionTexture.strength   occlusion_strength
+//     emissiveFactor              emissive
+//     alphaMode, alphaCutoff      alpha_mode (an unknown mode: opaque), alpha_cutoff
+//     KHR_materials_emissive_strength, _ior, _specular, _transmission,
+//     _volume, _clearcoat, _sheen: their fields, read;
+//     KHR_materials_pbrSpecularGlossiness (the older workflow), approximated:
+//       base_color = diffuseFactor, metallic = 0, roughness = 1 - glossiness,
+//       F0 = specularFactor through KHR_materials_specular's colour
+//       (specular_color = specularFactor / 0.04, specular = 1, so that
+//       min(0.04 specular_color, 1) specular = specularFactor);
+//   double_sided = two_sided_lighting = doubleSided (the specification
+//   reverses a back face's normal);
+//   unlit = KHR_materials_unlit;
+//   of the Phong fields, which the metallic-roughness shader does not read,
+//   only diffuse = base colour rgb (and, by the reader, diffuse_texture and
+//   uv_transform = the base colour texture's, texture_modulates = true), for
+//   code that wants a surface's albedo whatever its model (e.g. the albedo
+//   output). Phong's specular, shininess, emission, alpha_cutoff and
+//   refraction_index keep their defaults.
+// Extensions that change nothing the Scene holds (iridescence, anisotropy,
+// dispersion, diffuse_transmission) are recorded as ignored.
 #pragma once
 
+// The writer reaches the approximations (phong_to_pbr) through this header.
 #include "rayform/importers/material_approximation.h"
 #include "rayform/scene/scene.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tinygltf {
@@ -53,16 +54,37 @@ struct ExtensionUse {
   std::string detail;  // what was approximated or why it was ignored
 };
 
-// The factor part of glTF material `gm` (named `where`, e.g. "materials[2]",
-// in errors that start with `file`) as Phong: diffuse, specular, shininess,
-// emission, refraction, unlit, alpha cut-off threshold, sidedness. Textures
-// are left to the caller. Extensions met are recorded in `extensions`.
-void gltf_material_to_phong(const tinygltf::Material& gm, const std::string& file, const std::string& where,
-                            Material& m, std::vector<ExtensionUse>& extensions);
+// The material glTF's specification gives primitives without one: base
+// colour 1, metallic 1, roughness 1, single-sided.
+Material gltf_default_material();
+
+// glTF material `gm` (named `where`, e.g. "materials[2]", in errors that
+// start with `file`) as a Scene material, as described above, its texture
+// slots empty. Values outside the specification's ranges are errors naming
+// their JSON path. Extensions met are recorded in `extensions` (once each).
+Material gltf_material_factors(const tinygltf::Material& gm, const std::string& file, const std::string& where,
+                               std::vector<ExtensionUse>& extensions);
+
+// A texture reference of a glTF material: where it sits in the material's
+// JSON (`extension` empty: a core textureInfo of pbrMetallicRoughness or the
+// material itself; else a member of that material extension), the
+// PbrMaterial slot it fills and whether its texels are sRGB-encoded colour.
+struct GltfMaterialTexture {
+  const char* extension;  // "" for the core textures
+  const char* key;        // e.g. "baseColorTexture", "clearcoatNormalTexture"
+  TextureSlot PbrMaterial::*slot;
+  bool srgb;  // base colour, emissive, specular colour, sheen colour (and the
+              // specular-glossiness diffuse and specular textures)
+};
+// Every texture reference this reader keeps, core ones first.
+const std::vector<GltfMaterialTexture>& gltf_material_textures();
+
+// Every texture slot of `m` with its glTF name, for checks over all of them.
+std::vector<std::pair<const char*, const TextureSlot*>> pbr_texture_slots(const PbrMaterial& m);
 
 // KHR_texture_transform (uv' = T(offset) R(rotation) S(scale) uv in glTF's uv
-// space, v pointing down the image) as the Material::uv_transform that gives
-// the same texel for the flipped uvs the Scene stores (v_scene = 1 - v_gltf).
+// space, v pointing down the image) as the UvTransform that gives the same
+// texel for the flipped uvs the Scene stores (v_scene = 1 - v_gltf).
 // With F(u, v) = (u, 1 - v) the stored transform is F o M o F: the scale is
 // kept, the rotation changes sign and the offset becomes
 // (o.x + sin(r) s.y, 1 - o.y - cos(r) s.y).

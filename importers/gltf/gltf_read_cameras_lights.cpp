@@ -46,13 +46,11 @@ void GltfReader::place_camera(int c, const std::string& where, const mat4& world
 }
 
 // KHR_lights_punctual. Units: point and spot intensity is in candela
-// (lm/sr), directional in lux (lm/m^2). The shader's light colour is what
-// a surface facing the light receives: lux for a directional light, and
-// colour / (falloff d^2) for point and spot lights, so with falloff = 1
-// (inverse square) candela / d^2 is lux too. Intensity therefore goes into
-// the colour unscaled: a 1 cd point light 1 m away lights like a 1 lx sun.
-// (Exporters turn watts into candela, e.g. Blender: W / (4 pi) * 683 / 100
-// ... such scenes can be bright; exposure is the renderer's business.)
+// (lm/sr), directional in lux (lm/m^2). The Scene's light colour (scene.h) is
+// the radiance a white diffuse surface facing the light gets from it: with
+// irradiance E (lux for a directional light; candela / d^2 for point and
+// spot lights, whose falloff is inverse square) and Lambert's albedo / pi,
+// that is E / pi, so the stored colour is colour x intensity / pi.
 void GltfReader::place_light(int li, const std::string& where, const mat4& world) {
   if (li < 0 || size_t(li) >= model_.lights.size())
     fail(where + ".extensions.KHR_lights_punctual.light: light " + std::to_string(li) +
@@ -68,7 +66,7 @@ void GltfReader::place_light(int li, const std::string& where, const mat4& world
   }
   if (!(gl.intensity >= 0.0) || !std::isfinite(gl.intensity))
     fail(lw + ".intensity: " + std::to_string(gl.intensity) + " is not a finite number >= 0");
-  l.color = color * float(gl.intensity);
+  l.color = color * float(gl.intensity / std::numbers::pi);
   l.position = transform_point(world, vec3(0.f));
   vec3 dir = transform_vector(world, vec3(0.f, 0.f, -1.f));  // lights shine down their local -z
   l.direction = glm::length(dir) > 0.f ? glm::normalize(dir) : vec3(0.f, 0.f, -1.f);
@@ -76,7 +74,7 @@ void GltfReader::place_light(int li, const std::string& where, const mat4& world
     l.kind = Light::Kind::directional;
   } else if (gl.type == "point" || gl.type == "spot") {
     l.kind = gl.type == "point" ? Light::Kind::point : Light::Kind::spot;
-    l.falloff = 1.f;  // inverse square, see above
+    l.falloff = 1.f;  // inverse square: candela / d^2 is the irradiance in lux
     if (gl.range < 0.0 || !std::isfinite(gl.range)) fail(lw + ".range: must be a positive number");
     l.range = float(gl.range);
     if (l.kind == Light::Kind::spot) {

@@ -1,12 +1,15 @@
 // The glTF reader's materials and textures (GltfReader,
-// gltf_reader_internal.h): glTF materials as Scene (Phong) materials through
-// gltf_material.h, base colour textures with their image source (core,
-// EXT_texture_webp, KHR_texture_basisu's fallback), sampler and
-// KHR_texture_transform.
+// gltf_reader_internal.h): glTF materials as Scene metallic-roughness
+// materials through gltf_material.h, every texture reference of the core and
+// the material extensions as a TextureSlot (texCoord, KHR_texture_transform),
+// textures with their image source (core, EXT_texture_webp,
+// KHR_texture_basisu's fallback) and sampler, sRGB for colour and linear for
+// data (one Scene texture per glTF texture and use).
 #include "rayform/importers/gltf/gltf_file_access.h"
 #include "rayform/importers/gltf/gltf_material.h"
 #include "rayform/importers/gltf/gltf_reader_internal.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -28,11 +31,16 @@ std::vector<float> numbers(const tinygltf::Value& v) {
 
 }  // namespace
 
-GltfReader::TextureRef GltfReader::texture_ref(const tinygltf::TextureInfo& info, const std::string& where) {
-  TextureRef r;
+// The slot of texture reference `info` (named `where`): its Scene texture
+// (invalid when the image could not be loaded, warned about), texCoord and
+// KHR_texture_transform (whose texCoord overrides the reference's). Sets other
+// than TEXCOORD_0 and TEXCOORD_1 are not read: such a reference is warned
+// about and left unused.
+TextureSlot GltfReader::texture_slot(const tinygltf::TextureInfo& info, bool srgb, const std::string& where) {
+  TextureSlot r;
   r.texcoord = info.texCoord;
   if (r.texcoord < 0) fail(where + ".texCoord: " + std::to_string(r.texcoord) + " is negative");
-  r.texture = texture(info.index, where);
+  std::string texcoord_where = where + ".texCoord";
   auto it = info.extensions.find("KHR_texture_transform");
   if (it != info.extensions.end()) {
     const tinygltf::Value& t = it->second;
@@ -59,20 +67,99 @@ GltfReader::TextureRef GltfReader::texture_ref(const tinygltf::TextureInfo& info
       const tinygltf::Value& tc = t.Get("texCoord");
       if (!tc.IsNumber() || tc.GetNumberAsInt() < 0) fail(tw + ".texCoord: expected an index >= 0");
       r.texcoord = tc.GetNumberAsInt();  // overrides the textureInfo's
+      texcoord_where = tw + ".texCoord";
     }
     r.transform = gltf_uv_transform_to_scene(offset, rotation, scale);
   }
+  if (r.texcoord > 1) {
+    if (info.index < 0 || size_t(info.index) >= model_.textures.size())
+      fail(where + ".index: texture " + std::to_string(info.index) + " does not exist (the file has " +
+           std::to_string(model_.textures.size()) + " textures)");
+    warn(texcoord_where + ": TEXCOORD_" + std::to_string(r.texcoord) +
+         " is not read (only TEXCOORD_0 and TEXCOORD_1 are); the texture is not used");
+    return TextureSlot{};
+  }
+  r.texture = texture(info.index, srgb, where);
   return r;
 }
 
-// Scene texture for glTF texture ti (sRGB colour data), or invalid when its
-// image could not be loaded (warned about).
-int GltfReader::texture(int ti, const std::string& where) {
+// A texture reference inside an extension (a JSON object tinygltf leaves
+// unparsed) as a core textureInfo: index, texCoord, extensions.
+tinygltf::TextureInfo GltfReader::texture_info(const tinygltf::Value& v, const std::string& where) {
+  if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsNumber())
+    fail(where + ": expected an object with an \"index\"");
+  tinygltf::TextureInfo info;
+  info.index = v.Get("index").GetNumberAsInt();
+  if (v.Has("texCoord")) {
+    const tinygltf::Value& tc = v.Get("texCoord");
+    if (!tc.IsNumber()) fail(where + ".texCoord: expected an index >= 0");
+    info.texCoord = tc.GetNumberAsInt();
+  }
+  if (v.Has("extensions")) {
+    const tinygltf::Value& e = v.Get("extensions");
+    if (!e.IsObject()) fail(where + ".extensions: expected an object");
+    for (const std::string& key : e.Keys()) info.extensions[key] = e.Get(key);
+  }
+  return info;
+}
+
+// Every texture reference of glTF material `gm` (named `mw`) in its
+// PbrMaterial slot (gltf_material_textures). The specular-glossiness
+// workflow, when present, replaces the core base colour and
+// metallic-roughness textures.
+void GltfReader::read_texture_slots(const tinygltf::Material& gm, const std::string& mw, PbrMaterial& pbr) {
+  auto as_info = [](int index, int texcoord, const tinygltf::ExtensionMap& extensions) {
+    tinygltf::TextureInfo info;
+    info.index = index;
+    info.texCoord = texcoord;
+    info.extensions = extensions;
+    return info;
+  };
+  const bool specular_glossiness = gm.extensions.count("KHR_materials_pbrSpecularGlossiness") > 0;
+  const tinygltf::PbrMetallicRoughness& core = gm.pbrMetallicRoughness;
+  const std::string pw = mw + ".pbrMetallicRoughness";
+  if (core.baseColorTexture.index != -1 && !specular_glossiness)
+    pbr.base_color_texture = texture_slot(core.baseColorTexture, true, pw + ".baseColorTexture");
+  if (core.metallicRoughnessTexture.index != -1 && !specular_glossiness)
+    pbr.metallic_roughness_texture =
+        texture_slot(core.metallicRoughnessTexture, false, pw + ".metallicRoughnessTexture");
+  const tinygltf::NormalTextureInfo& n = gm.normalTexture;
+  if (n.index != -1)
+    pbr.normal_texture = texture_slot(as_info(n.index, n.texCoord, n.extensions), false, mw + ".normalTexture");
+  const tinygltf::OcclusionTextureInfo& o = gm.occlusionTexture;
+  if (o.index != -1)
+    pbr.occlusion_texture = texture_slot(as_info(o.index, o.texCoord, o.extensions), false, mw + ".occlusionTexture");
+  if (gm.emissiveTexture.index != -1)
+    pbr.emissive_texture = texture_slot(gm.emissiveTexture, true, mw + ".emissiveTexture");
+  for (const GltfMaterialTexture& t : gltf_material_textures()) {
+    if (!*t.extension) continue;
+    auto it = gm.extensions.find(t.extension);
+    if (it == gm.extensions.end() || !it->second.IsObject() || !it->second.Has(t.key)) continue;
+    const std::string where = mw + ".extensions." + t.extension + "." + t.key;
+    pbr.*t.slot = texture_slot(texture_info(it->second.Get(t.key), where), t.srgb, where);
+  }
+}
+
+// Scene texture for glTF texture ti, its texels sRGB-encoded colour or linear
+// data as `srgb` says, or invalid when its image could not be loaded (warned
+// about). A texture used both ways becomes two Scene textures.
+int GltfReader::texture(int ti, bool srgb, const std::string& where) {
   if (ti < 0 || size_t(ti) >= model_.textures.size())
     fail(where + ".index: texture " + std::to_string(ti) + " does not exist (the file has " +
          std::to_string(model_.textures.size()) + " textures)");
-  if (textures_[size_t(ti)] != -2) return textures_[size_t(ti)];
-  textures_[size_t(ti)] = invalid;
+  std::array<int, 2>& converted = textures_[size_t(ti)];
+  const size_t kind = srgb ? 1 : 0;
+  if (converted[kind] != -2) return converted[kind];
+  converted[kind] = invalid;
+  // Read the other way already: the same pixels and sampler.
+  if (const int other = converted[1 - kind]; other != -2) {
+    if (other == invalid) return invalid;
+    Texture copy = scene_.textures[size_t(other)];
+    copy.srgb = srgb;
+    scene_.textures.push_back(std::move(copy));
+    converted[kind] = int(scene_.textures.size()) - 1;
+    return converted[kind];
+  }
   const tinygltf::Texture& t = model_.textures[size_t(ti)];
   const std::string tw = idx("textures", ti);
   const int source = texture_source(t, tw);
@@ -100,7 +187,7 @@ int GltfReader::texture(int ti, const std::string& where) {
   tex.height = img.height;
   tex.channels = img.component;
   tex.pixels = img.image;
-  tex.srgb = true;
+  tex.srgb = srgb;
   tex.lookup = Texture::Lookup::standard;
   if (t.sampler >= 0) {
     if (size_t(t.sampler) >= model_.samplers.size())
@@ -116,8 +203,16 @@ int GltfReader::texture(int ti, const std::string& where) {
     tex.filter = Texture::Filter::linear;
   }
   scene_.textures.push_back(std::move(tex));
-  textures_[size_t(ti)] = int(scene_.textures.size()) - 1;
-  return textures_[size_t(ti)];
+  converted[kind] = int(scene_.textures.size()) - 1;
+  return converted[kind];
+}
+
+// The Scene texture rayform's extras name by glTF texture `ti`: the one
+// already read (as colour, else as data), else a new colour texture.
+int GltfReader::texture_for_extras(int ti) {
+  if (ti >= 0 && size_t(ti) < textures_.size() && textures_[size_t(ti)][1] == -2 && textures_[size_t(ti)][0] != -2)
+    return textures_[size_t(ti)][0];
+  return texture(ti, true, idx("textures", ti));
 }
 
 // The image texture `t` (named `tw`) is drawn with: EXT_texture_webp's
@@ -172,17 +267,12 @@ Texture::Wrap GltfReader::wrap(int mode, const std::string& where) {
   return Texture::Wrap::repeat;
 }
 
-// Scene material for glTF material gi (-1: the specification's default material).
+// Scene material for glTF material gi (-1: the specification's default
+// material): gltf_material.h's factors and every texture slot.
 int GltfReader::material(int gi, const std::string& where) {
   if (gi == -1) {
     if (default_material_ == invalid) {
-      Material m;
-      m.name = "default";
-      m.texture_modulates = true;
-      m.double_sided = false;
-      pbr_to_phong(vec3(1.f), 1.f, 1.f, vec3(gltf_dielectric_f0), m);  // base colour 1, metallic 1, roughness 1
-      scene_.materials.push_back(m);
-      material_texcoord_.push_back(0);
+      scene_.materials.push_back(gltf_default_material());
       default_material_ = int(scene_.materials.size()) - 1;
     }
     return default_material_;
@@ -193,55 +283,14 @@ int GltfReader::material(int gi, const std::string& where) {
   if (materials_[size_t(gi)] != invalid) return materials_[size_t(gi)];
   const tinygltf::Material& gm = model_.materials[size_t(gi)];
   const std::string mw = idx("materials", gi);
-  const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
-  Material m;
-  m.name = gm.name.empty() ? mw : gm.name;
-  m.texture_modulates = true;
-  gltf_material_to_phong(gm, path_, mw, m, extensions_);
-  const float base_alpha = float(pbr.baseColorFactor[3]);
-  int texcoord = 0;
-  if (pbr.baseColorTexture.index >= 0 || pbr.baseColorTexture.index < -1) {
-    TextureRef r = texture_ref(pbr.baseColorTexture, mw + ".pbrMetallicRoughness.baseColorTexture");
-    m.diffuse_texture = r.texture;
-    texcoord = r.texcoord;
-    if (r.texture != invalid) m.uv_transform = r.transform;
-  }
-  // The older specular-glossiness workflow's diffuse texture plays the base colour's part.
-  if (auto sg = gm.extensions.find("KHR_materials_pbrSpecularGlossiness"); sg != gm.extensions.end()) {
-    const std::string sw = mw + ".extensions.KHR_materials_pbrSpecularGlossiness.diffuseTexture";
-    if (sg->second.IsObject() && sg->second.Has("diffuseTexture")) {
-      const tinygltf::Value& dt = sg->second.Get("diffuseTexture");
-      if (!dt.IsObject() || !dt.Has("index") || !dt.Get("index").IsNumber())
-        fail(sw + ": expected an object with an \"index\"");
-      tinygltf::TextureInfo info;
-      info.index = dt.Get("index").GetNumberAsInt();
-      if (dt.Has("texCoord") && dt.Get("texCoord").IsNumber()) info.texCoord = dt.Get("texCoord").GetNumberAsInt();
-      TextureRef r = texture_ref(info, sw);
-      m.diffuse_texture = r.texture;
-      texcoord = r.texcoord;
-    }
-  }
-  // Cut-outs: the shader compares the texel's alpha with alpha_cutoff, while
-  // glTF compares baseColorFactor.a x texel alpha with alphaCutoff; fold the
-  // factor into the threshold. (Without a texture a uniform alpha below the
-  // cutoff cannot be expressed: such a material stays opaque.)
-  auto cutoff_for = [&](float c) { return base_alpha > 0.f ? c / base_alpha : 2.f; };
-  if (gm.alphaMode == "MASK") {
-    m.alpha_cutoff = cutoff_for(float(gm.alphaCutoff));
-  } else if (gm.alphaMode == "BLEND") {
-    m.alpha_cutoff = cutoff_for(0.5f);
-    warn(mw + ": alphaMode BLEND is drawn as MASK with cutoff 0.5 (no blending in this renderer)");
-  } else if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty()) {
-    warn(mw + ": unknown alphaMode '" + gm.alphaMode + "'; drawn OPAQUE");
-  }
-  m.double_sided = gm.doubleSided;
-  m.two_sided_lighting = gm.doubleSided;  // the specification reverses back-face normals
-  if (pbr.metallicRoughnessTexture.index >= 0) unused_textures_.insert("metallicRoughnessTexture");
-  if (gm.normalTexture.index >= 0) unused_textures_.insert("normalTexture");
-  if (gm.occlusionTexture.index >= 0) unused_textures_.insert("occlusionTexture");
-  if (gm.emissiveTexture.index >= 0) unused_textures_.insert("emissiveTexture");
+  Material m = gltf_material_factors(gm, path_, mw, extensions_);
+  if (gm.alphaMode != "OPAQUE" && gm.alphaMode != "MASK" && gm.alphaMode != "BLEND" && !gm.alphaMode.empty())
+    warn(mw + ".alphaMode: unknown mode '" + gm.alphaMode + "'; drawn OPAQUE");
+  read_texture_slots(gm, mw, m.pbr);
+  // The Phong fields' albedo (gltf_material.h): the base colour texture.
+  m.diffuse_texture = m.pbr.base_color_texture.texture;
+  m.uv_transform = m.pbr.base_color_texture.transform;
   scene_.materials.push_back(std::move(m));
-  material_texcoord_.push_back(texcoord);
   materials_[size_t(gi)] = int(scene_.materials.size()) - 1;
   return materials_[size_t(gi)];
 }

@@ -1,10 +1,12 @@
 // The glTF reader's meshes (GltfReader, gltf_reader_internal.h): each
 // glTF mesh's primitives as Scene meshes and shape nodes, once per morph
 // weights and skin; attributes from accessors or a KHR_draco_mesh_compression
-// stream, morph targets, linear blend skinning, and strips and fans as
+// stream (TEXCOORD_0 and TEXCOORD_1, TANGENT, COLOR_0 besides positions
+// and normals), morph targets, linear blend skinning, and strips and fans as
 // triangle lists.
 #include "rayform/importers/gltf/gltf_compression.h"
 #include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/importers/gltf/gltf_material.h"
 #include "rayform/importers/gltf/gltf_reader_internal.h"
 
 #include <algorithm>
@@ -185,6 +187,7 @@ Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const s
     same_count(f.count, where + ".attributes.NORMAL");
     read_vec3s(f, mesh.normals);
   }
+  if (prim.attributes.count("TANGENT")) read_tangents(prim, draco.get(), where, mesh);
   apply_morph_targets(prim, where, weights, mesh);
   if (joints) apply_skin(prim, draco.get(), where, *joints, mesh);
   for (size_t i = 0; i < nv; ++i)
@@ -199,16 +202,19 @@ Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const s
   }
   // Without NORMAL, normals stay empty: the renderer's face normals are the
   // flat normals the specification asks for.
-  const int texcoord = material_texcoord_[size_t(mat)];
-  const std::string uv_name = "TEXCOORD_" + std::to_string(texcoord);
-  if (prim.attributes.count(uv_name)) {
+  auto read_uvs = [&](const std::string& uv_name, std::vector<vec2>& out) {
+    if (!prim.attributes.count(uv_name)) return;
     GltfAccessors::Floats f = attribute(prim, draco.get(), uv_name, where, {TINYGLTF_TYPE_VEC2}, formats_texcoord);
     same_count(f.count, where + ".attributes." + uv_name);
-    mesh.uvs.resize(nv);
-    for (size_t i = 0; i < nv; ++i) mesh.uvs[i] = vec2(f.values[2 * i], 1.f - f.values[2 * i + 1]);  // v = 1 at the top
-  } else if (scene_.materials[size_t(mat)].diffuse_texture != invalid) {
-    warn(where + ": the material's texture uses " + uv_name + " but the primitive has none; drawn untextured");
-  }
+    out.resize(nv);
+    for (size_t i = 0; i < nv; ++i) out[i] = vec2(f.values[2 * i], 1.f - f.values[2 * i + 1]);  // v = 1 at the top
+  };
+  read_uvs("TEXCOORD_0", mesh.uvs);
+  read_uvs("TEXCOORD_1", mesh.uvs1);
+  for (const auto& [name, slot] : pbr_texture_slots(scene_.materials[size_t(mat)].pbr))
+    if (slot->used() && (slot->texcoord == 0 ? mesh.uvs : mesh.uvs1).empty())
+      warn(where + ": the material's " + name + " uses TEXCOORD_" + std::to_string(slot->texcoord) +
+           " but the primitive has none; drawn without it");
   if (prim.attributes.count("COLOR_0")) {
     GltfAccessors::Floats f =
         attribute(prim, draco.get(), "COLOR_0", where, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, formats_color);
@@ -243,6 +249,29 @@ Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const s
   return Primitive{int(scene_.meshes.size()) - 1, mat};
 }
 
+// TANGENT (VEC4; the same formats as NORMAL: float, or KHR_mesh_quantization's
+// normalised bytes and shorts) as Mesh::tangents: xyz normalised (a zero
+// vector stays zero), w the bitangent's sign. The specification's w is +1 or
+// -1; the sign of any other nonzero w is kept (a value rounded on its way
+// through some tool), while a w of 0 or a non-finite value is an error naming
+// the vertex.
+void GltfReader::read_tangents(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
+                               Mesh& mesh) {
+  const std::string aw = where + ".attributes.TANGENT";
+  const GltfAccessors::Floats f = attribute(prim, draco, "TANGENT", where, {TINYGLTF_TYPE_VEC4}, formats_normal);
+  const size_t nv = mesh.positions.size();
+  if (f.count != nv) fail(aw + ": " + std::to_string(f.count) + " elements, but POSITION has " + std::to_string(nv));
+  mesh.tangents.resize(nv);
+  for (size_t i = 0; i < nv; ++i) {
+    const vec4 t(f.values[4 * i], f.values[4 * i + 1], f.values[4 * i + 2], f.values[4 * i + 3]);
+    if (!is_finite(vec3(t)) || !std::isfinite(t.w) || t.w == 0.f)
+      fail(aw + ": vertex " + std::to_string(i) + " is (" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
+           std::to_string(t.z) + ", " + std::to_string(t.w) + "): expected finite xyz and w = 1 or -1");
+    const float len = glm::length(vec3(t));
+    mesh.tangents[i] = vec4(len > 0.f && std::isfinite(len) ? vec3(t) / len : vec3(0.f), t.w > 0.f ? 1.f : -1.f);
+  }
+}
+
 // Morph targets at `weights`: POSITION and NORMAL displaced by the
 // weighted sum of the targets' deltas (other target attributes are not used).
 void GltfReader::apply_morph_targets(const tinygltf::Primitive& prim, const std::string& where,
@@ -268,7 +297,8 @@ void GltfReader::apply_morph_targets(const tinygltf::Primitive& prim, const std:
 
 // Linear blend skinning into world space: p' = sum_k w_k J_{j_k} p over
 // the sets JOINTS_n / WEIGHTS_n (weights renormalised to sum 1); normals by
-// the blended matrix's linear part (renormalised later).
+// the blended matrix's inverse transpose (renormalised later), tangents by its
+// linear part (renormalised here; their sign kept).
 void GltfReader::apply_skin(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
                             const std::vector<mat4>& joints, Mesh& mesh) {
   const size_t nv = mesh.positions.size();
@@ -299,6 +329,11 @@ void GltfReader::apply_skin(const tinygltf::Primitive& prim, const DracoPrimitiv
     const mat4 m = blend[i] / total[i];
     mesh.positions[i] = transform_point(m, mesh.positions[i]);
     if (!mesh.normals.empty()) mesh.normals[i] = glm::transpose(glm::inverse(mat3(m))) * mesh.normals[i];
+    if (!mesh.tangents.empty()) {
+      const vec3 t = mat3(m) * vec3(mesh.tangents[i]);
+      const float len = glm::length(t);
+      mesh.tangents[i] = vec4(len > 0.f && std::isfinite(len) ? t / len : vec3(0.f), mesh.tangents[i].w);
+    }
   }
 }
 

@@ -16,9 +16,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Extensions whose data this reader uses (fully or approximately). Any other
-// in extensionsRequired is an error; any other in extensionsUsed is ignored
-// and said so.
+// Extensions a file may require: those whose data this reader uses (fully or
+// approximately), and the ones it knows and ignores, whose files still draw
+// (the material layers iridescence, anisotropy, dispersion and
+// diffuse_transmission, drawn without that layer; variants, each primitive
+// with its default material), reported as ignored. Any other in extensionsRequired is an error;
+// any other in extensionsUsed is ignored and said so.
 const std::set<std::string>& supported_extensions() {
   static const std::set<std::string> s = {"KHR_texture_transform",
                                           "KHR_lights_punctual",
@@ -53,7 +56,7 @@ Scene GltfReader::read(std::vector<ExtensionUse>* extensions) {
   scene_.source_path = path_;
   extras_primitives_.resize(model_.meshes.size());
   materials_.assign(model_.materials.size(), invalid);
-  textures_.assign(model_.textures.size(), -2);
+  textures_.assign(model_.textures.size(), {-2, -2});
   nodes_.assign(model_.nodes.size(), invalid);
   on_path_.assign(model_.nodes.size(), 0);
 
@@ -72,11 +75,6 @@ Scene GltfReader::read(std::vector<ExtensionUse>* extensions) {
   scene_.nodes.push_back(std::move(root));
   scene_.root = int(scene_.nodes.size()) - 1;
 
-  if (!unused_textures_.empty()) {
-    std::string list;
-    for (const std::string& u : unused_textures_) list += (list.empty() ? "" : ", ") + u;
-    warn("materials use " + list + ", which the Phong shader does not use; ignored");
-  }
   if (!model_.animations.empty()) warn("animations are ignored: the scene is read in its static pose");
   apply_rayform_extras();
   report_extensions();
@@ -104,6 +102,9 @@ void GltfReader::check_asset() {
 // approximated or ignored.
 void GltfReader::report_extensions() {
   using Support = ExtensionUse::Support;
+  if (std::count(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_materials_variants"))
+    use_extension("KHR_materials_variants", Support::ignored,
+                  "each primitive is drawn with its default material; the variants' materials are not used");
   for (const std::string& ext : model_.extensionsUsed) {
     bool seen =
         std::any_of(extensions_.begin(), extensions_.end(), [&](const ExtensionUse& u) { return u.name == ext; });
@@ -135,7 +136,7 @@ void GltfReader::apply_rayform_extras() {
   map.scene = options_.scene >= 0 ? options_.scene : std::max(model_.defaultScene, 0);
   map.mesh_primitives = extras_primitives_;
   map.materials = materials_;
-  map.texture = [this](int ti) { return texture(ti, idx("textures", ti)); };
+  map.texture = [this](int ti) { return texture_for_extras(ti); };
   std::vector<std::string> extras_warnings;
   apply_gltf_rayform_extras(model_, map, scene_, &extras_warnings);
   for (const std::string& w : extras_warnings) warn(w);

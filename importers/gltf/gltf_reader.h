@@ -19,17 +19,20 @@
 //   meshes in the pose their joints' node transforms give, in world space
 //   (linear blend skinning; the skinned node's own transform is ignored, as
 //   the specification says); animations are not played;
-// - TEXCOORD_n (the one the base colour texture uses) with v flipped to the
+// - TEXCOORD_0 as Mesh::uvs and TEXCOORD_1 as Mesh::uvs1, v flipped to the
 //   renderer's convention (v = 1 is the top row: v_scene = 1 - v_gltf);
-//   COLOR_0 as vertex colours;
-// - materials: gltf_material.h (metallic-roughness and KHR_materials_* onto
-//   Phong); base colour textures as RGBA8 pixels decoded by gltf_images.h
-//   (PNG, JPEG, WebP through the core's image_decode.h; sRGB, modulating,
-//   standard lookup, sampler wrap and filter), KTX2 only through a PNG/JPEG
-//   fallback source;
-//   KHR_texture_transform; alphaMode MASK; doubleSided; emissive;
+//   TANGENT as Mesh::tangents; COLOR_0 as vertex colours;
+// - materials: gltf_material.h (metallic-roughness and KHR_materials_* kept
+//   as Material::pbr, the file's meaning); every texture reference as a
+//   TextureSlot with its texCoord and KHR_texture_transform; textures as RGBA8
+//   pixels decoded by gltf_images.h (PNG, JPEG, WebP through the core's
+//   image_decode.h; standard lookup, sampler wrap and filter), sRGB for the
+//   colour textures and linear for the others (a texture used both ways is
+//   two Scene textures), KTX2 only through a PNG/JPEG fallback source;
+// - KHR_materials_variants: each primitive's default material (the variants
+//   are reported ignored);
 // - cameras and KHR_lights_punctual lights placed by their nodes' world
-//   transforms.
+//   transforms, a light's colour = colour x intensity / pi (scene.h's units).
 // Errors: rayform::Error "file: element: what", e.g.
 // "box.gltf: meshes[2].primitives[0].indices: index 40 is out of range (the primitive has 24 vertices)".
 #pragma once

@@ -18,6 +18,7 @@
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
 #include <tiny_gltf.h>
 
+#include <array>
 #include <cstdint>
 #include <initializer_list>
 #include <map>
@@ -79,13 +80,11 @@ class GltfReader {
   void place_light(int li, const std::string& where, const mat4& world);
 
   // ---- gltf_read_materials.cpp --------------------------------------------------
-  struct TextureRef {
-    int texture = invalid;  // Scene texture
-    int texcoord = 0;       // TEXCOORD_n
-    UvTransform transform;
-  };
-  TextureRef texture_ref(const tinygltf::TextureInfo& info, const std::string& where);
-  int texture(int ti, const std::string& where);
+  TextureSlot texture_slot(const tinygltf::TextureInfo& info, bool srgb, const std::string& where);
+  tinygltf::TextureInfo texture_info(const tinygltf::Value& v, const std::string& where);
+  void read_texture_slots(const tinygltf::Material& gm, const std::string& mw, PbrMaterial& pbr);
+  int texture(int ti, bool srgb, const std::string& where);
+  int texture_for_extras(int ti);
   int texture_source(const tinygltf::Texture& t, const std::string& tw);
   Texture::Wrap wrap(int mode, const std::string& where);
   int material(int gi, const std::string& where);
@@ -99,6 +98,8 @@ class GltfReader {
   const std::vector<int>& mesh_shapes(int mi, const std::vector<float>& weights, int skinned_node);
   Primitive convert_primitive(const tinygltf::Primitive& prim, const std::string& where, const std::string& name,
                               const std::vector<float>& weights, const std::vector<mat4>* joints);
+  void read_tangents(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
+                     Mesh& mesh);
   void apply_morph_targets(const tinygltf::Primitive& prim, const std::string& where, const std::vector<float>& weights,
                            Mesh& mesh);
   void apply_skin(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
@@ -120,12 +121,13 @@ class GltfReader {
   std::vector<int> parents_;                         // per glTF node: its first parent (node_world)
   std::set<int> ktx2_images_;                        // images that are KTX2 (not decoded)
   std::vector<ExtensionUse> extensions_;
-  std::vector<int> materials_;          // per glTF material: Scene material
-  std::vector<int> material_texcoord_;  // per Scene material: TEXCOORD set of its texture
-  std::vector<int> textures_;           // per glTF texture: Scene texture; -2 not yet converted
-  std::vector<int> nodes_;              // per glTF node: Scene node
+  std::vector<int> materials_;  // per glTF material: Scene material
+  // Per glTF texture, its Scene textures: [0] read as linear data, [1] as
+  // sRGB-encoded colour (a texture used both ways becomes two); -2: not yet
+  // converted.
+  std::vector<std::array<int, 2>> textures_;
+  std::vector<int> nodes_;  // per glTF node: Scene node
   std::vector<uint8_t> on_path_;
-  std::set<std::string> unused_textures_;
   int default_material_ = invalid;
 };
 

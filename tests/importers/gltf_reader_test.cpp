@@ -258,7 +258,10 @@ TEST(GltfReader, BoxTexturedGltfGlbAndEmbeddedAreIdentical) {
   EXPECT_EQ(mat.diffuse_texture, 0);
   EXPECT_TRUE(mat.texture_modulates);
   EXPECT_EQ(mat.diffuse, vec3(1.f));
-  EXPECT_EQ(mat.specular, vec3(0.f));  // metallic 0, roughness 1
+  EXPECT_EQ(mat.model, Material::Model::metallic_roughness);
+  EXPECT_EQ(mat.pbr.base_color_texture.texture, 0);
+  EXPECT_EQ(mat.pbr.metallic, 0.f);
+  EXPECT_EQ(mat.pbr.roughness, 1.f);
   EXPECT_FALSE(mat.double_sided);
   EXPECT_FALSE(mat.two_sided_lighting);
   EXPECT_TRUE(gltf.cameras.empty());
@@ -326,9 +329,12 @@ TEST(GltfReader, TwoCylinderEngineInstancesAndCounts) {
   EXPECT_EQ(st.nodes, 82u + 34u + 1u);
   ASSERT_EQ(s.cameras.size(), 1u);
   EXPECT_NEAR(s.cameras[0].fov_deg, 0.3143463730812073 * 180.0 / 3.14159265358979, 1e-4);
-  // Material_20: base 0.85, metallic 0, roughness 1 (default): no highlight.
+  // Material_20: base 0.85, metallic 0, roughness 1 (default).
+  EXPECT_EQ(s.materials[0].model, Material::Model::metallic_roughness);
+  EXPECT_NEAR(s.materials[0].pbr.base_color.x, 0.85f, 1e-6f);
+  EXPECT_EQ(s.materials[0].pbr.metallic, 0.f);
+  EXPECT_EQ(s.materials[0].pbr.roughness, 1.f);
   EXPECT_NEAR(s.materials[0].diffuse.x, 0.85f, 1e-6f);
-  EXPECT_EQ(s.materials[0].specular, vec3(0.f));
   for (const Mesh& m : s.meshes) {
     EXPECT_EQ(m.normals.size(), m.positions.size());
     EXPECT_TRUE(m.uvs.empty());
@@ -721,14 +727,15 @@ TEST_F(GltfFiles, CamerasAndPunctualLights) {
   ASSERT_EQ(s.lights.size(), 3u);
   const Light& sun = s.lights[0];
   EXPECT_EQ(sun.kind, Light::Kind::directional);
-  EXPECT_EQ(sun.color, vec3(2, 1, 0.5f));     // colour x intensity
-  EXPECT_NEAR(sun.direction.y, -1.f, 1e-6f);  // -90 degrees about x: -z turns to -y
+  const float pi = 3.14159265358979f;
+  EXPECT_EQ(sun.color, vec3(2, 1, 0.5f) / pi);  // colour x intensity / pi (scene.h's units)
+  EXPECT_NEAR(sun.direction.y, -1.f, 1e-6f);    // -90 degrees about x: -z turns to -y
   EXPECT_EQ(sun.falloff, 0.f);
   const Light& point = s.lights[1];
   EXPECT_EQ(point.kind, Light::Kind::point);
   EXPECT_EQ(point.position, vec3(4, 5, 16));
-  EXPECT_EQ(point.color, vec3(10.f));
-  EXPECT_EQ(point.falloff, 1.f);  // inverse square
+  EXPECT_EQ(point.color, vec3(10.f / pi));  // 10 cd: 10 lx at 1 m, the radiance 10 / pi off white Lambert
+  EXPECT_EQ(point.falloff, 1.f);            // inverse square
   EXPECT_EQ(point.range, 5.f);
   const Light& spot = s.lights[2];
   EXPECT_EQ(spot.kind, Light::Kind::spot);
@@ -736,9 +743,10 @@ TEST_F(GltfFiles, CamerasAndPunctualLights) {
   EXPECT_NEAR(spot.spot_outer_deg, 0.6 * 180.0 / 3.14159265358979, 1e-4);
   EXPECT_EQ(spot.direction, vec3(0, 0, -1));
   EXPECT_EQ(spot.falloff, 1.f);
+  EXPECT_EQ(spot.color, vec3(3.f / pi));
 }
 
-TEST_F(GltfFiles, MaterialConversion) {
+TEST_F(GltfFiles, MaterialAsTheFileMeansIt) {
   Quad q;
   std::string top =
       R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_materials_clearcoat"],
@@ -761,29 +769,43 @@ TEST_F(GltfFiles, MaterialConversion) {
   ASSERT_EQ(s.materials.size(), 1u);
   const Material& m = s.materials[0];
   EXPECT_EQ(m.name, "m");
-  EXPECT_EQ(m.diffuse, vec3(0.5f, 0.25f, 1.f));
-  // Ks = mix(0.04, base, 0.5) * (1 - 0.5)^2; n = (2 / 0.5^4 - 2) / 4 = 7.5
-  EXPECT_NEAR(m.specular.x, (0.04f + 0.5f) * 0.5f * 0.25f, 1e-6f);
-  EXPECT_NEAR(m.specular.y, (0.04f + 0.25f) * 0.5f * 0.25f, 1e-6f);
-  EXPECT_NEAR(m.specular.z, (0.04f + 1.f) * 0.5f * 0.25f, 1e-6f);
-  EXPECT_NEAR(m.shininess, 7.5f, 1e-5f);
-  EXPECT_EQ(m.emission, vec3(0.2f, 0.4f, 0.6f));
+  EXPECT_EQ(m.model, Material::Model::metallic_roughness);
+  EXPECT_EQ(m.pbr.base_color, vec4(0.5f, 0.25f, 1.f, 0.5f));
+  EXPECT_EQ(m.pbr.metallic, 0.5f);
+  EXPECT_EQ(m.pbr.roughness, 0.5f);
+  EXPECT_EQ(m.pbr.emissive, vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(m.pbr.emissive_strength, 2.f);
+  EXPECT_EQ(m.pbr.alpha_mode, PbrMaterial::AlphaMode::mask);
+  EXPECT_FLOAT_EQ(m.pbr.alpha_cutoff, 0.3f);
   EXPECT_TRUE(m.double_sided);
-  EXPECT_TRUE(m.two_sided_lighting);                // the specification reverses back-face normals
-  EXPECT_NEAR(m.alpha_cutoff, 0.3f / 0.5f, 1e-6f);  // factor alpha folded into the threshold
+  EXPECT_TRUE(m.two_sided_lighting);  // the specification reverses back-face normals
+  // The albedo in the Phong fields; nothing else of Phong's.
+  EXPECT_EQ(m.diffuse, vec3(0.5f, 0.25f, 1.f));
+  EXPECT_EQ(m.specular, vec3(0.f));
+  EXPECT_EQ(m.emission, vec3(0.f));
   EXPECT_TRUE(m.texture_modulates);
-  ASSERT_EQ(m.diffuse_texture, 0);
-  EXPECT_EQ(s.textures[0].wrap_u, Texture::Wrap::repeat);  // no sampler: the default one
+  // One glTF texture used as colour (base) and as data (normal): two Scene textures.
+  ASSERT_EQ(s.textures.size(), 2u);
+  const TextureSlot& base = m.pbr.base_color_texture;
+  ASSERT_EQ(m.diffuse_texture, base.texture);
+  EXPECT_TRUE(s.textures[size_t(base.texture)].srgb);
+  EXPECT_FALSE(s.textures[size_t(m.pbr.normal_texture.texture)].srgb);
+  EXPECT_EQ(m.pbr.normal_texture.texcoord, 0);
+  EXPECT_EQ(s.textures[size_t(base.texture)].wrap_u, Texture::Wrap::repeat);  // no sampler: the default one
   UvTransform expect = gltf_uv_transform_to_scene(vec2(0.1f, 0.2f), 0.3f, vec2(2, 3));
+  EXPECT_EQ(base.transform.offset, expect.offset);
+  EXPECT_EQ(base.transform.scale, vec2(2, 3));
+  EXPECT_FLOAT_EQ(base.transform.rotation, -0.3f);
   EXPECT_EQ(m.uv_transform.offset, expect.offset);
-  EXPECT_EQ(m.uv_transform.scale, vec2(2, 3));
-  EXPECT_FLOAT_EQ(m.uv_transform.rotation, -0.3f);
-  // texCoord 1 (the extension's override) is the one read: accessor 3 reads the
-  // position floats as pairs: (0,0) (0,1) (0,0) (1,1); TEXCOORD_0 would give (0,0) last.
+  // texCoord 1 (the extension's override) is the base colour's set; both
+  // sets are read: accessor 3 reads the position floats as pairs (0,0) (0,1)
+  // (0,0) (1,1), TEXCOORD_0 is the quad's (0,1) (1,1) (1,0) (0,0).
+  EXPECT_EQ(base.texcoord, 1);
   const Mesh& mesh = s.meshes.at(0);
-  EXPECT_EQ(mesh.uvs[3], vec2(1, 0));  // (1, 1) flipped
-  EXPECT_EQ(mesh.uvs[1], vec2(0, 0));  // (0, 1) flipped
-  EXPECT_TRUE(any_contains(warnings, "normalTexture"));
+  EXPECT_EQ(mesh.uvs1[3], vec2(1, 0));                // (1, 1) flipped
+  EXPECT_EQ(mesh.uvs1[1], vec2(0, 0));                // (0, 1) flipped
+  EXPECT_EQ(mesh.uvs[3], vec2(0, 1));                 // (0, 0) flipped
+  EXPECT_TRUE(warnings.empty()) << warnings.front();  // the normal texture is kept, not "ignored"
 }
 
 TEST_F(GltfFiles, PointsAndLinesAreSkippedWithAWarning) {
