@@ -254,7 +254,8 @@ void add_render_command(CLI::App& app) {
                        "(default: khr-neutral for files with physically based materials, else none)")
           ->check(CLI::IsMember({"khr-neutral", "aces", "none"}));
   render->add_flag("--frame", job.frame,
-                   "Ignore the file's cameras: the default camera, on the +z side framing the scene's bounds");
+                   "Ignore the file's cameras: the default camera, framing the scene's bounds from the +z side (from "
+                   "above at 45 degrees when they are flat in the xz plane, from the +x side when flat in yz)");
   CLI::Option* orbit =
       render
           ->add_option("--orbit", a->orbit,

@@ -40,7 +40,7 @@ ReadyOptions ready_options(const RenderJob& job) {
     r.orbit = *job.orbit;
     r.orbit_fov_deg = job.camera_adjust.fov_deg.value_or(default_camera_fov_deg);  // stands back for the fov in effect
   } else if (job.frame) {
-    r.orbit = Orbit{};  // the default camera's place, whatever the fov then makes of it
+    r.frame = true;  // the default camera's place, whatever the fov then makes of it
   }
   if (job.camera_adjust.any())
     r.adjust_camera = [&job](Scene& s) {

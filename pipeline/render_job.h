@@ -62,7 +62,7 @@ struct RenderJob {
   bool default_tone_map = true;
   ColorEncoding color = ColorEncoding::automatic;  // the output's transfer function (color_output.h)
   // The camera: `orbit` replaces the file's cameras with one orbiting the
-  // scene's bounds, `frame` with the default framing camera (Orbit{});
+  // scene's bounds, `frame` with the default camera (default_orbit);
   // `camera_adjust` then moves the camera rendered.
   bool frame = false;
   std::optional<Orbit> orbit;

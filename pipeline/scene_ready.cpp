@@ -44,9 +44,10 @@ ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const R
   static_cast<LoadedScene&>(ready) = std::move(loaded);
   Scene& scene = ready.scene;
   const bool asset = ready.format != SceneFormat::course_txt;
-  if (options.orbit) {
+  if (options.orbit || options.frame) {
+    const Bounds3 bounds = scene_stats(scene, options.load.limits.instances).bounds;
     scene.cameras = {
-        orbit_camera(scene_stats(scene, options.load.limits.instances).bounds, *options.orbit, options.orbit_fov_deg)};
+        orbit_camera(bounds, options.orbit ? *options.orbit : default_orbit(bounds), options.orbit_fov_deg)};
   } else if (asset && add_default_camera(scene)) {
     ready.notes.push_back(path + " has no camera: added one framing the scene's bounds");
   }

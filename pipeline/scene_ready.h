@@ -70,6 +70,9 @@ struct ReadyOptions {
   // format; no default camera is then added.
   std::optional<Orbit> orbit;
   float orbit_fov_deg = default_camera_fov_deg;
+  // When set (and no orbit), the file's cameras are replaced by the default
+  // camera (orbit_camera at default_orbit of the scene's bounds), any format.
+  bool frame = false;
   // Called once the camera is in place (the file's, the default or the
   // orbit's) and before the lights are added, to change the cameras (the
   // command line's --look-from, --look-at, --up, --fov); may throw.
