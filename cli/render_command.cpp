@@ -109,11 +109,11 @@ struct RenderArgs {
   ReadFlags read;
   std::string size;  // empty: the default for the scene's format
   std::string depth, dialect, filter = "box", sampler = "stratified", color = "auto";
-  std::string orbit, look_from, look_at, up, background;
+  std::string orbit, look_from, look_at, up, background, tonemap;
   float fov = 0.f;
   // Options whose presence matters (given, even with an empty value).
   CLI::Option *camera = nullptr, *orbit_option = nullptr, *fov_option = nullptr, *background_option = nullptr,
-              *bounces = nullptr, *frames = nullptr;
+              *bounces = nullptr, *frames = nullptr, *tonemap_option = nullptr;
 };
 
 // Once the flags are parsed: the job completed from them, checked, and run
@@ -123,6 +123,11 @@ void run_render_args(RenderArgs& a) {
                     *bounces = a.bounces, *frames = a.frames;
   a.job.default_size = a.size.empty();
   a.job.default_bounces = bounces->count() == 0;
+  // render_options_problem does not check the exposure yet: a NaN or infinite one is refused here.
+  if (!std::isfinite(a.job.render.exposure_ev))
+    throw UsageError("--exposure expects a finite number of stops, got " + std::to_string(a.job.render.exposure_ev));
+  a.job.default_tone_map = a.tonemap_option->count() == 0;
+  if (!a.job.default_tone_map) a.job.render.tone_map = *tone_map_from_name(a.tonemap);  // checked by the option
   if (!a.job.default_size) parse_size(a.size, &a.job.render.width, &a.job.render.height);
   if (!a.depth.empty()) a.job.depth = parse_depth(a.depth);
   a.job.load.dialect = dialect_from_string(a.dialect);
@@ -207,8 +212,12 @@ void add_render_command(CLI::App& app) {
   CLI::Option* camera = render->add_option("--camera", job.render.camera, "Camera index");
   render->add_option("--threads", job.render.threads, "Worker threads (0: all)");
   render->add_flag("--shadows", job.render.shadows, "Shadow rays to every light");
-  CLI::Option* bounces = render->add_option("--bounces", job.render.bounces,
-                                            "Reflection/refraction depth (default: 4 for course a5 scenes, else 0)");
+  CLI::Option* bounces = render->add_option(
+      "--bounces", job.render.bounces,
+      "Reflection/refraction depth (default: " + std::to_string(course_a5_default_bounces) +
+          " for course a5 scenes; for files with physically based (metallic-roughness) materials " +
+          std::to_string(pbr_default_bounces) + ", or " + std::to_string(transmission_default_bounces) +
+          " when one of them uses transmission; else 0)");
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
       ->check(CLI::IsMember({"box", "tent"}))
@@ -232,8 +241,21 @@ void add_render_command(CLI::App& app) {
                    "in float files: exr, hdr, tif), raw (as computed), srgb (encoded, clamped to 0..1)")
       ->check(CLI::IsMember({"auto", "raw", "srgb"}))
       ->capture_default_str();
+  render
+      ->add_option("--exposure", job.render.exposure_ev,
+                   "Exposure in stops: colour (and the background) scaled by 2^EV before the tone map, in every "
+                   "colour output, float files too (default 0)")
+      ->type_name("EV");
+  a->tonemap_option =
+      render
+          ->add_option("--tonemap", a->tonemap,
+                       "Tone map of 8-bit colour outputs (float files stay linear): khr-neutral (Khronos PBR Neutral: "
+                       "colours kept, highlights compressed), aces (Hill's ACES filmic fit) or none (clamped) "
+                       "(default: khr-neutral for files with physically based materials, else none)")
+          ->check(CLI::IsMember({"khr-neutral", "aces", "none"}));
   render->add_flag("--frame", job.frame,
-                   "Ignore the file's cameras: the default camera, on the +z side framing the scene's bounds");
+                   "Ignore the file's cameras: the default camera, framing the scene's bounds from the +z side (from "
+                   "above at 45 degrees when they are flat in the xz plane, from the +x side when flat in yz)");
   CLI::Option* orbit =
       render
           ->add_option("--orbit", a->orbit,

@@ -40,7 +40,7 @@ ReadyOptions ready_options(const RenderJob& job) {
     r.orbit = *job.orbit;
     r.orbit_fov_deg = job.camera_adjust.fov_deg.value_or(default_camera_fov_deg);  // stands back for the fov in effect
   } else if (job.frame) {
-    r.orbit = Orbit{};  // the default camera's place, whatever the fov then makes of it
+    r.frame = true;  // the default camera's place, whatever the fov then makes of it
   }
   if (job.camera_adjust.any())
     r.adjust_camera = [&job](Scene& s) {
@@ -57,8 +57,10 @@ ReadyScene load_ready(const RenderJob& job, const JobHooks& hooks) {
       job.preloaded ? make_scene_ready(*job.preloaded, job.input, ready) : load_ready_scene(job.input, ready);
   if (hooks.warn)
     for (const std::string& w : loaded.warnings) hooks.warn(w);
-  if (hooks.note)
+  if (hooks.note) {
     for (const std::string& n : loaded.notes) hooks.note(n);
+    if (job.default_bounces && !loaded.bounces_note.empty()) hooks.note(loaded.bounces_note);
+  }
   if (job.background) {
     // Display values: converted to linear where the pictures are seen
     // through sRGB, kept where they are written as they are.
@@ -140,6 +142,7 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   if (spread) spread->agree_ready(failure);
 
   if (job.default_bounces) ro.bounces = loaded.render.bounces;
+  if (job.default_tone_map) ro.tone_map = loaded.render.tone_map;
   ro.progress = hooks.progress;
   if (hooks.render_started) hooks.render_started();
   const auto t_render = Clock::now();

@@ -52,12 +52,17 @@ struct RenderJob {
   // The scene format's default size (default_render_options: 512x512 for
   // assets, the course's 200x200 for course scenes), not render's.
   bool default_size = true;
-  // The default bounces of the scene's format and dialect, known once it is
-  // read (default_render_options: 4 for the course's a5, else 0), not render's.
+  // The default bounces of the scene's format, dialect and materials, known
+  // once it is read (default_render_options: 4 for the course's a5, 4 for
+  // metallic-roughness materials, 8 when one transmits, else 0), not render's.
   bool default_bounces = true;
+  // The tone map of the scene's materials, known once it is read
+  // (default_render_options: khr_neutral for metallic-roughness materials,
+  // else none), not render's. render.exposure_ev has no such default: 0.
+  bool default_tone_map = true;
   ColorEncoding color = ColorEncoding::automatic;  // the output's transfer function (color_output.h)
   // The camera: `orbit` replaces the file's cameras with one orbiting the
-  // scene's bounds, `frame` with the default framing camera (Orbit{});
+  // scene's bounds, `frame` with the default camera (default_orbit);
   // `camera_adjust` then moves the camera rendered.
   bool frame = false;
   std::optional<Orbit> orbit;

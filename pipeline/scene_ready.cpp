@@ -2,6 +2,8 @@
 
 #include "rayform/scene/scene_stats.h"
 
+#include <algorithm>
+#include <string>
 #include <utility>
 
 namespace rayform {
@@ -10,6 +12,22 @@ RenderOptions default_render_options(SceneFormat format, CourseDialect dialect) 
   RenderOptions o;
   if (format != SceneFormat::course_txt) o.width = o.height = asset_image_size;
   else if (dialect == CourseDialect::a5) o.bounces = course_a5_default_bounces;
+  return o;
+}
+
+bool uses_transmission(const Scene& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+    return m.model == Material::Model::metallic_roughness && m.pbr.transmission > 0.f;
+  });
+}
+
+RenderOptions default_render_options(const Scene& scene, SceneFormat format, CourseDialect dialect) {
+  RenderOptions o = default_render_options(format, dialect);
+  const bool pbr = std::any_of(scene.materials.begin(), scene.materials.end(),
+                               [](const Material& m) { return m.model == Material::Model::metallic_roughness; });
+  if (!pbr) return o;
+  o.tone_map = ToneMap::khr_neutral;
+  o.bounces = uses_transmission(scene) ? transmission_default_bounces : pbr_default_bounces;
   return o;
 }
 
@@ -26,9 +44,10 @@ ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const R
   static_cast<LoadedScene&>(ready) = std::move(loaded);
   Scene& scene = ready.scene;
   const bool asset = ready.format != SceneFormat::course_txt;
-  if (options.orbit) {
+  if (options.orbit || options.frame) {
+    const Bounds3 bounds = scene_stats(scene, options.load.limits.instances).bounds;
     scene.cameras = {
-        orbit_camera(scene_stats(scene, options.load.limits.instances).bounds, *options.orbit, options.orbit_fov_deg)};
+        orbit_camera(bounds, options.orbit ? *options.orbit : default_orbit(bounds), options.orbit_fov_deg)};
   } else if (asset && add_default_camera(scene)) {
     ready.notes.push_back(path + " has no camera: added one framing the scene's bounds");
   }
@@ -37,8 +56,11 @@ ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const R
     ready.notes.push_back(path + " has no light: added the default light rig (a head-light, a key and a fill) " +
                           "around the camera");
   ready.color.scene = scene_colors(ready.format);
-  ready.render = default_render_options(ready.format, ready.dialect);
+  ready.render = default_render_options(scene, ready.format, ready.dialect);
   ready.render.camera = options.camera;
+  if (uses_transmission(scene))
+    ready.bounces_note =
+        path + " uses transmission: --bounces " + std::to_string(transmission_default_bounces) + " by default";
   return ready;
 }
 

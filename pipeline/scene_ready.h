@@ -36,6 +36,27 @@ inline constexpr int asset_image_size = 512;
 // its default bounces (course_a5_default_bounces).
 RenderOptions default_render_options(SceneFormat format, CourseDialect dialect = CourseDialect::v2012);
 
+// Bounces for a scene with physically based materials
+// (Material::Model::metallic_roughness): its metals and glossy surfaces show
+// the scene in their reflections, reflections of reflections included.
+inline constexpr int pbr_default_bounces = 4;
+// Bounces for a scene with a transmissive material (pbr.transmission > 0): a
+// ray through a glass object crosses at least two surfaces, and reflects on
+// the way; 8 lets it through a few such objects.
+inline constexpr int transmission_default_bounces = 8;
+
+// default_render_options(format, dialect), then what `scene`'s materials
+// need when any of them is metallic-roughness: the Khronos PBR Neutral tone
+// map (ToneMap::khr_neutral, as the Khronos Sample Viewer shows such files),
+// and transmission_default_bounces when one of them transmits, else
+// pbr_default_bounces. Scenes of Phong materials alone (course, OBJ's
+// Kd/Ks/Ns) keep the format's options.
+RenderOptions default_render_options(const Scene& scene, SceneFormat format,
+                                     CourseDialect dialect = CourseDialect::v2012);
+
+// Whether a metallic-roughness material of `scene` transmits light (pbr.transmission > 0).
+bool uses_transmission(const Scene& scene);
+
 // What the colours of a scene of `format` mean: course scenes produce values
 // for the screen as they are, assets linear light (render/color_output.h).
 SceneColors scene_colors(SceneFormat format);
@@ -49,6 +70,9 @@ struct ReadyOptions {
   // format; no default camera is then added.
   std::optional<Orbit> orbit;
   float orbit_fov_deg = default_camera_fov_deg;
+  // When set (and no orbit), the file's cameras are replaced by the default
+  // camera (orbit_camera at default_orbit of the scene's bounds), any format.
+  bool frame = false;
   // Called once the camera is in place (the file's, the default or the
   // orbit's) and before the lights are added, to change the cameras (the
   // command line's --look-from, --look-at, --up, --fov); may throw.
@@ -61,8 +85,12 @@ struct ReadyScene : LoadedScene {
   std::vector<std::string> notes;
   // How to write its pictures (write_color_image): what its colours mean.
   ColorOutput color;
-  // default_render_options(format, dialect), with `camera` set to ReadyOptions::camera.
+  // default_render_options(scene, format, dialect), with `camera` set to ReadyOptions::camera.
   RenderOptions render;
+  // When render.bounces is transmission_default_bounces, the note saying so
+  // ("glass.gltf uses transmission: --bounces 8 by default"), for a caller
+  // that keeps the default bounces; else empty.
+  std::string bounces_note;
 };
 
 // load_scene, then the defaults above. Throws rayform::Error as load_scene

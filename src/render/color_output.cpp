@@ -46,6 +46,16 @@ void encode_srgb_in_place(Image& image) {
     }
 }
 
+void tone_map_in_place(Image& image, ToneMap map) {
+  if (map == ToneMap::none || image.channels < 3) return;
+  const size_t step = size_t(image.channels);
+  for (size_t i = 0; i + step <= image.pixels.size(); i += step) {
+    float* p = &image.pixels[i];
+    const vec3 c = apply_tone_map(map, vec3(p[0], p[1], p[2]));
+    for (int k = 0; k < 3; ++k) p[k] = c[k];
+  }
+}
+
 std::string write_color_temporary(const ImageFile& file, RenderResult& result, ColorPlane plane,
                                   const ColorOutput& output) {
   const std::string& path = file.path;
@@ -64,11 +74,15 @@ std::string write_color_temporary(const ImageFile& file, RenderResult& result, C
   }
   Image& image = plane == ColorPlane::color ? result.color : result.albedo;
   if (image.empty()) throw Error(path + ": the render has no " + what + " to write");
+  const ToneMap tone_map = plane == ColorPlane::color && !file.floats ? result.tone_map : ToneMap::none;
   if (with_alpha) {
     Image rgba = color_with_alpha(result);
+    tone_map_in_place(rgba, tone_map);
     if (srgb) encode_srgb_in_place(rgba);
     return write_image_temporary(file, rgba);
   }
+  tone_map_in_place(image, tone_map);
+  if (tone_map != ToneMap::none) result.tone_map = ToneMap::none;  // `image` now holds tone-mapped colour
   if (srgb) encode_srgb_in_place(image);
   return write_image_temporary(file, image);
 }

@@ -10,6 +10,7 @@
 
 #include "rayform/image/image.h"
 #include "rayform/image/image_file.h"
+#include "rayform/image/tone_map.h"
 #include "rayform/render/render.h"
 
 #include <cstdint>
@@ -61,6 +62,10 @@ ColorFormat render_color_format(const ColorOutput& output, const std::string& pa
 // linear) or unchanged.
 void encode_srgb_in_place(Image& image);
 
+// Each pixel's colour channels (the first three; a fourth, alpha, kept)
+// through `map` (image/tone_map.h).
+void tone_map_in_place(Image& image, ToneMap map);
+
 enum class ColorPlane : uint8_t { color, albedo };
 
 // Writes `plane` of `result` to a temporary file beside the file in the
@@ -68,7 +73,9 @@ enum class ColorPlane : uint8_t { color, albedo };
 // with commit_temporary, or several with OutputFiles::add_written). Colour
 // gets the coverage as a fourth (alpha) channel, linear, when the render has
 // one (RenderOptions::alpha; color_with_alpha). A float plane without alpha
-// is encoded in place: afterwards `result` holds the file's values.
+// is encoded in place: afterwards `result` holds the file's values. Float
+// colour written to a file that is not a float file is first tone mapped by
+// result.tone_map (8-bit colour was tone mapped by the render; albedo never is).
 // Throws rayform::Error when the plane is missing or holds 8-bit values of
 // another encoding, or a float file is asked for from 8-bit values (render
 // with render_color_format), or the file cannot be written.

@@ -3,9 +3,12 @@
 // missed camera ray shows, and stores colour, depth, normals, albedo and
 // coverage into a RenderResult's buffers, quantising 8-bit colour as it
 // stores (image/quantize.h's rule, raw or sRGB: RenderOptions::color_format).
+// Colour is stored exposed (RenderOptions::exposure_ev) and, when 8-bit,
+// tone mapped (RenderOptions::tone_map); albedo as it is.
 #pragma once
 
 #include "rayform/image/quantize.h"
+#include "rayform/image/tone_map.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
 
@@ -81,7 +84,7 @@ class Film {
 
   // Pixel `pixel` (row by row from the top left) of every buffer kept.
   [[gnu::always_inline]] void store(uint32_t pixel, const PixelValues& px) const {
-    store_color(format_, srgb_, result_.color, result_.color8, pixel, px.color);
+    store_color(format_, srgb_, result_.color, result_.color8, pixel, grades_ ? graded(px) : px.color);
     if (depth_) result_.depth[pixel] = px.depth;
     if (normals_) result_.normals[pixel] = px.normal;
     if (albedo_) store_color(format_, srgb_, result_.albedo, result_.albedo8, pixel, px.albedo);
@@ -89,10 +92,22 @@ class Film {
   }
 
  private:
+  // The colour stored for px: exposed, then tone mapped (8-bit colour). A
+  // premultiplied colour is tone mapped as the straight colour it stands for.
+  vec3 graded(const PixelValues& px) const {
+    const vec3 c = px.color * exposure_scale_;
+    if (tone_map_ == ToneMap::none) return c;
+    if (!premultiplied_) return apply_tone_map(tone_map_, c);
+    return px.coverage > 0.f ? apply_tone_map(tone_map_, c / px.coverage) * px.coverage : c;
+  }
+
   RenderResult& result_;
   ColorFormat format_;
   const SrgbQuantizer* srgb_;  // ColorFormat::srgb8's, else null
   bool depth_, normals_, albedo_, alpha_, premultiplied_, cube_map_, misses_are_bytes_;
+  float exposure_scale_;  // 2^RenderOptions::exposure_ev
+  ToneMap tone_map_;      // RenderOptions::tone_map for 8-bit colour, else none
+  bool grades_;           // whether either changes colour
   PixelValues background_;
   unsigned char background8_[3] = {};
 };

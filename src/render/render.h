@@ -8,6 +8,7 @@
 #pragma once
 
 #include "rayform/image/image.h"
+#include "rayform/image/tone_map.h"
 #include "rayform/render/adaptive_sampling.h"
 #include "rayform/render/grid_filter.h"
 #include "rayform/render/prepared_scene.h"
@@ -61,6 +62,14 @@ struct RenderOptions {
   bool depth = false, normals = false, albedo = false;
   AlphaMode alpha = AlphaMode::none;
   ColorFormat color_format = ColorFormat::linear_float;
+  // Colour (not albedo) is scaled by 2^exposure_ev (every format: 8-bit and
+  // float outputs alike), then, for 8-bit colour only, mapped by tone_map
+  // (image/tone_map.h) before it is encoded and quantised; linear_float
+  // colour stays linear (write_color_temporary applies tone_map when such
+  // colour is written to an 8-bit file). The background is colour too.
+  // exposure_ev must be finite.
+  float exposure_ev = 0.f;
+  ToneMap tone_map = ToneMap::none;
   bool generic = false;  // force the general path (no feature specialisation)
   bool packets = true;   // camera rays of a one-mesh scene eight at a time (the same image)
   int tile_size = 16;    // the unit of work (tile_grid.h)
@@ -83,7 +92,10 @@ struct RenderResult {
   Image albedo;                 // 3 channels, as color
   Image8 albedo8;               // 3 channels, as color8
   std::vector<float> coverage;  // 0..1 per pixel (AlphaMode, above), when alpha is not none
-  uint64_t samples = 0;         // camera samples traced for colour (all pixels)
+  // RenderOptions::tone_map: applied to color8 by the render; what
+  // linear_float colour still needs when it is written to an 8-bit file.
+  ToneMap tone_map = ToneMap::none;
+  uint64_t samples = 0;  // camera samples traced for colour (all pixels)
 };
 
 // What is wrong with `options`, "" when nothing: the one check of the

@@ -62,6 +62,16 @@ Camera orbit_camera(const Bounds3& bounds, const Orbit& orbit, float fov_deg) {
   return c;
 }
 
+Orbit default_orbit(const Bounds3& bounds) {
+  if (!usable(bounds)) return Orbit{};
+  const vec3 e = bounds.extent();
+  auto thin = [&](int axis) { return e[axis] < flat_bounds_fraction * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3]); };
+  if (thin(2)) return Orbit{};  // facing the default camera already
+  if (thin(1)) return Orbit{0.f, flat_view_elevation_deg, std::nullopt};
+  if (thin(0)) return Orbit{90.f, 0.f, std::nullopt};
+  return Orbit{};
+}
+
 vec3 up_not_parallel(vec3 up, vec3 direction) {
   auto parallel = [&](vec3 u) {
     const float ld = glm::length(direction), lu = glm::length(u);
@@ -74,7 +84,8 @@ vec3 up_not_parallel(vec3 up, vec3 direction) {
 
 bool add_default_camera(Scene& scene) {
   if (!scene.cameras.empty()) return false;
-  Camera c = orbit_camera(scene_stats(scene).bounds, Orbit{});
+  const Bounds3 bounds = scene_stats(scene).bounds;
+  Camera c = orbit_camera(bounds, default_orbit(bounds));
   c.name = "default";
   scene.cameras.push_back(c);
   return true;

@@ -42,9 +42,23 @@ vec3 framing_target(const Bounds3& bounds);
 // `orbit` around framing_target(bounds), looking at it. The framing distance
 // keeps every corner of the box within the view with a 10% margin for any
 // image at least as wide as it is tall; for empty bounds it is 5. Orbit{}
-// (0, 0) is the default camera: on the +z side, looking down -z. Throws
+// (0, 0) is the default camera of bounds that are not flat (default_orbit):
+// on the +z side, looking down -z. Throws
 // rayform::Error for an orbit_problem or a fov outside (0, 180).
 Camera orbit_camera(const Bounds3& bounds, const Orbit& orbit, float fov_deg = default_camera_fov_deg);
+
+// Bounds whose extent along one axis is below this fraction of both other
+// extents are flat: the default camera looks at their large face.
+inline constexpr float flat_bounds_fraction = 0.25f;
+// The default camera's elevation over flat bounds lying in the xz plane, degrees.
+inline constexpr float flat_view_elevation_deg = 45.f;
+
+// Where the default camera stands around `bounds`, so that it sees their
+// largest face: Orbit{} (the +z side, looking down -z) unless the bounds are
+// flat (flat_bounds_fraction); thin along y (a model lying in the xz plane),
+// on the +z side looking down at flat_view_elevation_deg; thin along x, on
+// the +x side (azimuth 90). Thin along z, empty or not finite: Orbit{}.
+Orbit default_orbit(const Bounds3& bounds);
 
 // `up`, unless it is parallel to `direction` (or zero); then +y, or for a
 // vertical direction -z looking down and +z looking up (the limit of tilting
@@ -52,7 +66,7 @@ Camera orbit_camera(const Bounds3& bounds, const Orbit& orbit, float fov_deg = d
 vec3 up_not_parallel(vec3 up, vec3 direction);
 
 // When the scene has no camera, adds the default camera: orbit_camera at
-// Orbit{} with default_camera_fov_deg around the scene's bounds, named
+// default_orbit with default_camera_fov_deg around the scene's bounds, named
 // "default" (an empty scene gets a camera at (0, 0, 5)). Returns whether a
 // camera was added. Throws rayform::Error when the node graph is invalid.
 bool add_default_camera(Scene& scene);

@@ -2,15 +2,20 @@
 // colour is sRGB-encoded in 8-bit files and kept linear and unclamped in float
 // files; a course scene's (display) values are written as they are; --color
 // raw|srgb forces either; 8-bit render buffers are written only where their
-// encoding is the file's.
+// encoding is the file's. Exposure scales all colour, the tone map changes
+// 8-bit colour only, once, whether the render quantised it or the writer.
 #include "rayform/image/color.h"
 #include "rayform/image/quantize.h"
+#include "rayform/image/tone_map.h"
 #include "rayform/render/color_output.h"
 #include "rayform/base/error.h"
+#include "rayform/render/prepared_scene.h"
 #include "test_paths.h"
+#include "test_scenes.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -136,6 +141,102 @@ TEST(ColorOutput, SrgbEncodingKeepsAlpha) {
   EXPECT_EQ(rgba.pixels[1], linear_to_srgb(1.f));
   EXPECT_EQ(rgba.pixels[2], 0.f);
   EXPECT_EQ(rgba.pixels[3], 0.25f);
+}
+
+TEST(ColorOutput, ToneMapGoesInto8BitFilesFromFloatColourOnly) {
+  const fs::path dir = test::temp_dir("color_output_tone_map");
+  RenderResult r = float_result();
+  r.tone_map = ToneMap::khr_neutral;
+  const std::string exr = (dir / "a.exr").string(), png = (dir / "a.png").string();
+  write_color_image(exr, r, linear);
+  EXPECT_EQ(read_image(exr).pixels, values);  // float files stay linear
+  write_color_image(png, r, linear);
+  const std::vector<float> bytes = read_image(png).pixels;
+  ASSERT_EQ(bytes.size(), values.size());
+  for (size_t i = 0; i < values.size(); i += 3) {
+    const vec3 mapped = tone_map_khr_neutral(vec3(values[i], values[i + 1], values[i + 2]));
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(bytes[i + size_t(k)] * 255.f, float(quantize_srgb_direct(mapped[k]))) << "sample " << i + size_t(k);
+  }
+  EXPECT_EQ(r.tone_map, ToneMap::none);  // r.color now holds mapped (and encoded) colour: not mapped again
+  // Albedo is never tone mapped.
+  RenderResult a = float_result();
+  a.albedo = a.color;
+  a.tone_map = ToneMap::aces;
+  const std::string albedo_png = (dir / "albedo.png").string();
+  commit_temporary(write_color_temporary(albedo_png, a, ColorPlane::albedo, linear), albedo_png);
+  const std::vector<float> albedo = read_image(albedo_png).pixels;
+  for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(albedo[i] * 255.f, float(quantize_srgb_direct(values[i])));
+  fs::remove_all(dir);
+}
+
+// The lit sphere rendered with `o` (48x48).
+RenderResult render_sphere(RenderOptions o, AlphaMode alpha = AlphaMode::none) {
+  const Scene s = test::lit_sphere_scene(vec3(0.2f, 0.3f, 0.9f));
+  const PreparedScene p = prepare_scene(s);
+  o.width = o.height = 48;
+  o.alpha = alpha;
+  return render(p, o);
+}
+
+TEST(ColorOutput, ExposureScalesColourNotAlbedo) {
+  RenderOptions o;
+  o.albedo = true;
+  const RenderResult base = render_sphere(o);
+  o.exposure_ev = 1.5f;
+  o.tone_map = ToneMap::aces;  // float colour: not tone mapped by the render
+  const RenderResult exposed = render_sphere(o);
+  ASSERT_EQ(exposed.color.pixels.size(), base.color.pixels.size());
+  const float scale = std::exp2(1.5f);
+  for (size_t i = 0; i < base.color.pixels.size(); ++i)
+    EXPECT_FLOAT_EQ(exposed.color.pixels[i], base.color.pixels[i] * scale) << i;
+  EXPECT_EQ(exposed.albedo.pixels, base.albedo.pixels);
+  EXPECT_EQ(exposed.tone_map, ToneMap::aces);  // left for a writer of 8-bit files
+}
+
+TEST(ColorOutput, EightBitRenderEqualsFloatRenderWrittenTo8Bit) {
+  // The render loop's tone map and quantisation (srgb8, unit8) give the bytes
+  // the writer gives the same render in floats; exposure 0 and no tone map
+  // give today's bytes (the quantised float render).
+  for (ColorFormat format : {ColorFormat::srgb8, ColorFormat::unit8})
+    for (ToneMap map : {ToneMap::none, ToneMap::khr_neutral, ToneMap::aces})
+      for (float ev : {0.f, -1.f, 2.f})
+        for (int spp : {1, 4}) {
+          RenderOptions o;
+          o.spp = spp;
+          o.exposure_ev = ev;
+          o.tone_map = map;
+          RenderResult linear_result = render_sphere(o);
+          o.color_format = format;
+          const RenderResult bytes = render_sphere(o);
+          tone_map_in_place(linear_result.color, linear_result.tone_map);
+          const std::vector<float>& c = linear_result.color.pixels;
+          ASSERT_EQ(bytes.color8.pixels.size(), c.size());
+          size_t differ = 0;
+          for (size_t i = 0; i < c.size(); ++i)
+            differ += bytes.color8.pixels[i] !=
+                      (format == ColorFormat::srgb8 ? quantize_srgb_direct(c[i]) : quantize_unit(c[i]));
+          EXPECT_EQ(differ, 0u) << tone_map_name(map) << " ev " << ev << " spp " << spp;
+        }
+}
+
+TEST(ColorOutput, ToneMapKeepsStraightAlpha) {
+  RenderOptions o;
+  o.spp = 4;
+  o.color_format = ColorFormat::srgb8;
+  const RenderResult plain = render_sphere(o, AlphaMode::straight);
+  o.tone_map = ToneMap::khr_neutral;
+  o.exposure_ev = 1.f;
+  const RenderResult mapped = render_sphere(o, AlphaMode::straight);
+  EXPECT_EQ(mapped.coverage, plain.coverage);
+  // The straight colour of the float render, exposed and mapped, is what the 8-bit render holds.
+  o.color_format = ColorFormat::linear_float;
+  const RenderResult linear_result = render_sphere(o, AlphaMode::straight);
+  for (size_t p = 0; p < linear_result.coverage.size(); ++p) {
+    const float* c = &linear_result.color.pixels[3 * p];
+    const vec3 m = tone_map_khr_neutral(vec3(c[0], c[1], c[2]));
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(mapped.color8.pixels[3 * p + size_t(k)], quantize_srgb_direct(m[k])) << p;
+  }
 }
 
 }  // namespace
