@@ -123,9 +123,6 @@ void run_render_args(RenderArgs& a) {
                     *bounces = a.bounces, *frames = a.frames;
   a.job.default_size = a.size.empty();
   a.job.default_bounces = bounces->count() == 0;
-  // render_options_problem does not check the exposure yet: a NaN or infinite one is refused here.
-  if (!std::isfinite(a.job.render.exposure_ev))
-    throw UsageError("--exposure expects a finite number of stops, got " + std::to_string(a.job.render.exposure_ev));
   a.job.default_tone_map = a.tonemap_option->count() == 0;
   if (!a.job.default_tone_map) a.job.render.tone_map = *tone_map_from_name(a.tonemap);  // checked by the option
   if (!a.job.default_size) parse_size(a.size, &a.job.render.width, &a.job.render.height);

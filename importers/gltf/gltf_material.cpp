@@ -228,7 +228,7 @@ const std::vector<GltfMaterialTexture>& gltf_material_textures() {
   return t;
 }
 
-std::vector<std::pair<const char*, const TextureSlot*>> pbr_texture_slots(const PbrMaterial& m) {
+std::vector<std::pair<const char*, const TextureSlot*>> gltf_named_texture_slots(const PbrMaterial& m) {
   std::vector<std::pair<const char*, const TextureSlot*>> out;
   for (const GltfMaterialTexture& t : gltf_material_textures())
     if (std::string(t.extension) != "KHR_materials_pbrSpecularGlossiness") out.emplace_back(t.key, &(m.*t.slot));

@@ -80,7 +80,7 @@ struct GltfMaterialTexture {
 const std::vector<GltfMaterialTexture>& gltf_material_textures();
 
 // Every texture slot of `m` with its glTF name, for checks over all of them.
-std::vector<std::pair<const char*, const TextureSlot*>> pbr_texture_slots(const PbrMaterial& m);
+std::vector<std::pair<const char*, const TextureSlot*>> gltf_named_texture_slots(const PbrMaterial& m);
 
 // KHR_texture_transform (uv' = T(offset) R(rotation) S(scale) uv in glTF's uv
 // space, v pointing down the image) as the UvTransform that gives the same

@@ -211,7 +211,7 @@ Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const s
   };
   read_uvs("TEXCOORD_0", mesh.uvs);
   read_uvs("TEXCOORD_1", mesh.uvs1);
-  for (const auto& [name, slot] : pbr_texture_slots(scene_.materials[size_t(mat)].pbr))
+  for (const auto& [name, slot] : gltf_named_texture_slots(scene_.materials[size_t(mat)].pbr))
     if (slot->used() && (slot->texcoord == 0 ? mesh.uvs : mesh.uvs1).empty())
       warn(where + ": the material's " + name + " uses TEXCOORD_" + std::to_string(slot->texcoord) +
            " but the primitive has none; drawn without it");

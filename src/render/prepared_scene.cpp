@@ -140,7 +140,14 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   std::vector<uint8_t> queued(scene.textures.size(), 0);
   for (size_t i = 0; i < p.materials.size(); ++i) {
     if (!material_used[i]) continue;
-    const Material& m = p.materials[i];
+    Material& m = p.materials[i];
+    if (m.model == Material::Model::metallic_roughness) {
+      // What the integrator's common tests read, from the pbr fields: the
+      // cut-out threshold of MASK, and no culling of a transmissive
+      // surface's back faces (rays inside a volume leave through them).
+      m.alpha_cutoff = m.pbr.alpha_mode == PbrMaterial::AlphaMode::mask ? m.pbr.alpha_cutoff : -1.f;
+      if (m.pbr.transmission > 0.f || m.pbr.transmission_texture.used()) m.double_sided = true;
+    }
     if (m.specular != vec3(0.f)) f.specular = true;
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
     if (!m.double_sided) f.single_sided = true;

@@ -10,6 +10,7 @@
 #include "rayform/render/whitted_integrator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <optional>
 
@@ -104,6 +105,7 @@ std::string render_options_problem(const RenderOptions& o) {
   if (o.bounces < 0) return "bounces: must not be negative, got " + std::to_string(o.bounces);
   if (o.threads < 0) return "threads: must not be negative, got " + std::to_string(o.threads);
   if (o.camera < 0) return "camera: must not be negative, got " + std::to_string(o.camera);
+  if (!std::isfinite(o.exposure_ev)) return "exposure: must be a finite number, got " + std::to_string(o.exposure_ev);
   if (o.target_error && !(*o.target_error > 0.f))
     return "target-error: must be a positive number, got " + std::to_string(*o.target_error);
   if (o.target_error && o.filter != PixelFilter::box) return "target-error: adaptive sampling uses the box filter";

@@ -536,7 +536,9 @@ TEST_F(GltfExtensions, BasisuUsesTheFallbackSourceOrIsAnErrorNamingTheTexture) {
 
 // ---- KHR_materials_* ------------------------------------------------------------------------------
 
-TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
+// The extensions' values are kept as the file gives them (PbrMaterial), and
+// a written .glb gives them back.
+TEST_F(GltfExtensions, MaterialExtensionsAreKept) {
   GltfDraft b;
   b.one_mesh({{"POSITION", b.triangle_positions()}});
   json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}};
@@ -549,31 +551,34 @@ TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
       {{"extensions",
         {{"KHR_materials_pbrSpecularGlossiness",
           {{"diffuseFactor", {0.2, 0.4, 0.6, 1.0}}, {"specularFactor", {0.1, 0.1, 0.1}}, {"glossinessFactor", 0.5}}}}}},
-      {{"pbrMetallicRoughness", pbr}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+      {{"pbrMetallicRoughness", pbr},
+       {"extensions", {{"KHR_materials_sheen", {{"sheenColorFactor", {0.3, 0.2, 0.1}}, {"sheenRoughnessFactor", 0.4}}}}}},
   });
   std::vector<std::string> warnings;
   std::vector<ExtensionUse> used;
   Scene s = load(b, &warnings, &used);
   ASSERT_GE(s.materials.size(), 5u);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(s.materials[size_t(i)].model, Material::Model::metallic_roughness) << i;
   EXPECT_TRUE(s.materials[0].unlit);
   EXPECT_FALSE(s.materials[1].unlit);
-  // ior 3: F0 = (2/4)^2 = 0.25 for a dielectric, x (1 - 0.5)^2.
-  EXPECT_NEAR(s.materials[1].specular.x, 0.25f * 0.25f, 1e-6f);
-  EXPECT_FLOAT_EQ(s.materials[2].refraction_index, 1.3f);
-  EXPECT_EQ(s.materials[2].diffuse, vec3(0.f));  // all transmitted
-  EXPECT_EQ(s.materials[2].specular, vec3(0.5f));
-  EXPECT_EQ(s.materials[3].diffuse, vec3(0.2f, 0.4f, 0.6f));
-  EXPECT_NEAR(s.materials[3].specular.x, 0.1f * 0.25f, 1e-6f);  // F0 (glossiness)^2
-  auto support = [&](const std::string& name) {
-    for (const ExtensionUse& u : used)
+  EXPECT_FLOAT_EQ(s.materials[1].pbr.ior, 3.f);
+  EXPECT_FLOAT_EQ(s.materials[1].pbr.roughness, 0.5f);
+  EXPECT_FLOAT_EQ(s.materials[2].pbr.ior, 1.3f);
+  EXPECT_FLOAT_EQ(s.materials[2].pbr.transmission, 1.f);
+  EXPECT_EQ(s.materials[3].pbr.base_color, vec4(0.2f, 0.4f, 0.6f, 1.f));
+  EXPECT_FLOAT_EQ(s.materials[3].pbr.roughness, 0.5f);  // 1 - glossiness
+  EXPECT_EQ(s.materials[4].pbr.sheen_color, vec3(0.3f, 0.2f, 0.1f));
+  EXPECT_FLOAT_EQ(s.materials[4].pbr.sheen_roughness, 0.4f);
+  auto support = [&](const std::vector<ExtensionUse>& uses, const std::string& name) {
+    for (const ExtensionUse& u : uses)
       if (u.name == name) return int(u.support);
     return -1;
   };
-  EXPECT_EQ(support("KHR_materials_unlit"), int(ExtensionUse::Support::read));
-  EXPECT_EQ(support("KHR_materials_transmission"), int(ExtensionUse::Support::approximated));
-  EXPECT_EQ(support("KHR_materials_sheen"), int(ExtensionUse::Support::ignored));
-  EXPECT_TRUE(test::any_contains(warnings, "extensions ignored: KHR_materials_sheen"));
-  // Written back as glTF, the mapped materials read the same.
+  EXPECT_EQ(support(used, "KHR_materials_unlit"), int(ExtensionUse::Support::read));
+  EXPECT_EQ(support(used, "KHR_materials_transmission"), int(ExtensionUse::Support::read));
+  EXPECT_EQ(support(used, "KHR_materials_sheen"), int(ExtensionUse::Support::read));
+  EXPECT_EQ(support(used, "KHR_materials_pbrSpecularGlossiness"), int(ExtensionUse::Support::approximated));
+  // Written back as glTF, the materials read the same.
   const std::string written = (dir_ / "written.glb").string();
   std::vector<std::string> messages;
   GltfWriteOptions glb;
@@ -584,9 +589,12 @@ TEST_F(GltfExtensions, MaterialExtensionsMapOntoPhong) {
   ASSERT_GE(again.materials.size(), 5u);
   EXPECT_TRUE(again.materials[0].unlit);
   EXPECT_FALSE(again.materials[1].unlit);
-  EXPECT_EQ(again.materials[1].specular, s.materials[1].specular);
-  EXPECT_FLOAT_EQ(again.materials[2].refraction_index, 1.3f);
-  EXPECT_EQ(again.materials[3].diffuse, s.materials[3].diffuse);
+  EXPECT_FLOAT_EQ(again.materials[1].pbr.ior, 3.f);
+  EXPECT_FLOAT_EQ(again.materials[2].pbr.transmission, 1.f);
+  EXPECT_FLOAT_EQ(again.materials[2].pbr.ior, 1.3f);
+  EXPECT_EQ(again.materials[3].pbr.base_color, s.materials[3].pbr.base_color);
+  EXPECT_EQ(again.materials[4].pbr.sheen_color, s.materials[4].pbr.sheen_color);
+  EXPECT_EQ(support(used_again, "KHR_materials_sheen"), int(ExtensionUse::Support::read));
   GltfDraft bad = b;
   bad.j["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 0.5;
   EXPECT_NE(error(bad).find("materials[1].extensions.KHR_materials_ior.ior: 0.500000 is neither 0 nor a number >= 1"),

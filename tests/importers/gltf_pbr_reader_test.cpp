@@ -516,7 +516,7 @@ TEST(GltfPbrSamples, ClearCoatMultiUvAndNormalTangentMirror) {
   Scene multi = read_gltf_scene(test::asset("khronos/MultiUVTest/glTF-Binary/MultiUVTest.glb").string());
   bool uses_set_1 = false;
   for (const Material& m : multi.materials)
-    for (const auto& [name, slot] : pbr_texture_slots(m.pbr)) uses_set_1 |= slot->used() && slot->texcoord == 1;
+    for (const auto& [name, slot] : gltf_named_texture_slots(m.pbr)) uses_set_1 |= slot->used() && slot->texcoord == 1;
   EXPECT_TRUE(uses_set_1);
   for (const Mesh& m : multi.meshes) EXPECT_EQ(m.uvs1.size(), m.positions.size());
   Scene mirror =
