@@ -23,6 +23,13 @@ inline std::filesystem::path shared_dir() {
   return e && *e ? e : RAYFORM_SHARED_DEFAULT;
 }
 
+// The command-line program of this build (RAYFORM_BIN overrides it, e.g.
+// to run a test against another build).
+inline std::string rayform_binary() {
+  const char* e = std::getenv("RAYFORM_BIN");
+  return e && *e ? e : RAYFORM_BIN_DEFAULT;
+}
+
 inline bool shared_available() { return std::filesystem::is_directory(shared_dir() / "course"); }
 
 // A fresh empty folder for one test's outputs.

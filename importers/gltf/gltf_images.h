@@ -1,5 +1,5 @@
-// Images of glTF files, decoded for tinygltf (its image-loader callback)
-// from memory by the core's image_decode.h, never by tinygltf's stb_image:
+// Images of glTF files, kept by tinygltf's image-loader callback and decoded
+// after the load, in parallel, from memory by the core's image_decode.h, never by tinygltf's stb_image:
 // PNG (libpng), JPEG (libjpeg-turbo), WebP (EXT_texture_webp, libwebp), as
 // RGBA8 as tinygltf's loader gave (16-bit images reduced to their high byte:
 // the Scene holds 8-bit texels), under the texture-size limit of
@@ -29,11 +29,23 @@ struct GltfImageContext {
   std::vector<std::string> warnings;       // "images[2]: cannot decode (...)"
   std::vector<int> ktx2_images;            // images left empty because they are KTX2
   DecodeOptions decode;                    // the texel limit
+  // The encoded bytes of the images gltf_load_image keeps for
+  // decode_gltf_images (tinygltf calls it one image at a time).
+  struct Encoded {
+    int index = -1;  // into Model::images
+    std::vector<unsigned char> bytes;
+  };
+  std::vector<Encoded> encoded;
 };
 
-// tinygltf::LoadImageDataFunction.
+// tinygltf::LoadImageDataFunction: checks the image's bufferView range and
+// keeps its bytes (GltfImageContext::encoded); decode_gltf_images decodes them.
 bool gltf_load_image(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
                      int req_height, const unsigned char* bytes, int size, void* user);
+
+// Decodes the images gltf_load_image kept into `model`'s images, in
+// parallel; their warnings are added to ctx.warnings in image order.
+void decode_gltf_images(GltfImageContext& ctx, tinygltf::Model& model);
 
 // Whether `bytes` start like a KTX2 file.
 bool is_ktx2(const unsigned char* bytes, size_t size);

@@ -67,6 +67,7 @@ void GltfReader::load() {
                                        unsigned(bytes.size()), fsctx.base);
   if (!fsctx.problem.empty()) fail(fsctx.problem);
   if (!ok) diagnose_load_failure(bytes, container, glb, err);
+  decode_gltf_images(images, model_);
   for (const std::string& w : images.warnings) warn(w);
   ktx2_images_.insert(images.ktx2_images.begin(), images.ktx2_images.end());
   std::istringstream wl(warn_text);

@@ -75,6 +75,11 @@ struct SplitSumTables {
 // times 1 - (1 - v.h)^5 (A) or (1 - v.h)^5 (B).
 SplitSumTables integrate_split_sum() {
   constexpr int polar_steps = 64, azimuth_steps = 32;
+  std::array<float, azimuth_steps> cos_phi{}, sin_phi{};
+  for (int q = 0; q < azimuth_steps; ++q) {
+    cos_phi[size_t(q)] = std::cos(pi * (float(q) + 0.5f) / float(azimuth_steps));
+    sin_phi[size_t(q)] = std::sin(pi * (float(q) + 0.5f) / float(azimuth_steps));
+  }
   SplitSumTables t;
   for (int i = 0; i < table_size; ++i) {
     float n_dot_v = table_n_dot_v(i);
@@ -88,8 +93,7 @@ SplitSumTables integrate_split_sum() {
         float cos2 = (1.f - xi) / (1.f + (alpha2 - 1.f) * xi);
         float cos_h = std::sqrt(cos2), sin_h = std::sqrt(std::max(0.f, 1.f - cos2));
         for (int q = 0; q < azimuth_steps; ++q) {
-          float phi = pi * (float(q) + 0.5f) / float(azimuth_steps);
-          vec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+          vec3 h(sin_h * cos_phi[size_t(q)], sin_h * sin_phi[size_t(q)], cos_h);
           float v_dot_h = glm::dot(v, h);
           if (v_dot_h <= 0.f) continue;
           float n_dot_l = 2.f * v_dot_h * cos_h - n_dot_v;  // l = 2 (v.h) h - v

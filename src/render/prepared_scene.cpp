@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 namespace rayform {
@@ -135,6 +136,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     f.transforms |= inst.has_transform;
     f.planes |= inst.kind == ShapeKind::plane;
   }
+  bool sheen = false;  // some used pbr material has a sheen
   p.textures.resize(scene.textures.size());
   std::vector<std::pair<int, TextureImage*>> to_decode;  // scene texture handle, destination
   std::vector<uint8_t> queued(scene.textures.size(), 0);
@@ -145,7 +147,12 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       // What the integrator's common tests read, from the pbr fields: the
       // cut-out threshold of MASK, and no culling of a transmissive
       // surface's back faces (rays inside a volume leave through them).
-      m.alpha_cutoff = m.pbr.alpha_mode == PbrMaterial::AlphaMode::mask ? m.pbr.alpha_cutoff : -1.f;
+      // A blended texel of alpha 0 adds nothing and lets everything through:
+      // it is skipped as a hole (alpha below the smallest positive float),
+      // so that the albedo and depth outputs show what lies behind it.
+      m.alpha_cutoff = m.pbr.alpha_mode == PbrMaterial::AlphaMode::mask    ? m.pbr.alpha_cutoff
+                       : m.pbr.alpha_mode == PbrMaterial::AlphaMode::blend ? std::numeric_limits<float>::denorm_min()
+                                                                           : -1.f;
       if (m.pbr.transmission > 0.f || m.pbr.transmission_texture.used()) m.double_sided = true;
     }
     if (m.specular != vec3(0.f)) f.specular = true;
@@ -168,6 +175,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       if (pm.alpha_mode != PbrMaterial::AlphaMode::opaque) f.alpha_cutout = true;
       f.blend |= pm.alpha_mode == PbrMaterial::AlphaMode::blend;
       f.transmission |= pm.transmission > 0.f || pm.transmission_texture.used();
+      sheen |= pm.sheen_color != vec3(0.f);
       for (const TextureSlot* slot : pbr_texture_slots(pm)) use_texture(slot->texture);
     } else {
       use_texture(m.diffuse_texture);
@@ -197,7 +205,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   });
   if (f.pbr) {  // the BRDF's tables, made once before the render's threads need them
     ggx_split_sum(1.f, 1.f);
-    sheen_directional_albedo(1.f, 1.f);
+    if (sheen) sheen_directional_albedo(1.f, 1.f);
   }
   for (const Light& l : scene.lights) {
     p.lights.push_back(prepare_light(l));

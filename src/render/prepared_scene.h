@@ -90,10 +90,10 @@ struct PreparedScene {
   // scene/mesh_tangents.h), for a used mesh that a normal texture needs them
   // for and whose file gave none; else empty.
   std::vector<std::vector<vec4>> corner_tangents;
-  std::vector<TextureImage> textures;     // per Scene texture; empty image if unused
-  std::vector<Material> materials;        // the Scene's, then one default material
-  std::vector<TextureImage> cube_map;     // six faces, or empty
-  std::vector<PreparedLight> lights;      // the Scene's, in order
+  std::vector<TextureImage> textures;  // per Scene texture; empty image if unused
+  std::vector<Material> materials;     // the Scene's, then one default material
+  std::vector<TextureImage> cube_map;  // six faces, or empty
+  std::vector<PreparedLight> lights;   // the Scene's, in order
   SceneFeatures features;
   Bounds3 bounds;  // of the bounded instances, world space
 

@@ -85,9 +85,12 @@ inline PbrPoint pbr_point(const PreparedScene& p, const PbrMaterial& m, const Su
   const vec3 own = flipped ? -sp.normal : sp.normal;  // the normal of the surface's own side
   const float side = flipped ? -1.f : 1.f;
   vec3 n = side * mapped_normal(p, m.normal_texture, m.normal_scale, sp, own);
-  // A normal texture may tilt the normal away from the viewer; the
-  // interpolated normal is used where it does.
+  // A normal texture may tilt the normal away from the viewer, and an
+  // interpolated normal faces away near silhouettes: the interpolated
+  // normal, then the geometric normal (turned towards the viewer) are used
+  // where they do.
   if (glm::dot(n, d) >= 0.f) n = sp.normal;
+  if (glm::dot(n, d) >= 0.f) n = glm::dot(sp.geometric_normal, d) < 0.f ? sp.geometric_normal : -sp.geometric_normal;
   out.normal = n;
   s.clearcoat_normal =
       s.clearcoat > 0.f ? side * mapped_normal(p, m.clearcoat_normal_texture, m.clearcoat_normal_scale, sp, own) : n;

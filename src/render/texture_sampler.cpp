@@ -36,9 +36,13 @@ TextureImage decode_texture(const Texture& texture, const DecodeOptions& options
     t.width = texture.pixels.empty() ? file.width : texture.width;
     t.height = texture.pixels.empty() ? file.height : texture.height;
     if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
-    t.rgba8.resize(size_t(t.width) * t.height * 4);
-    for (size_t i = 0; i < size_t(t.width) * t.height; ++i)
-      expand_to_rgba(src + i * c, c, uint8_t(255), &t.rgba8[i * 4]);
+    const size_t texels = size_t(t.width) * size_t(t.height);
+    if (c == 4) {  // already RGBA (glTF images): a copy
+      t.rgba8.assign(src, src + texels * 4);
+      return t;
+    }
+    t.rgba8.resize(texels * 4);
+    for (size_t i = 0; i < texels; ++i) expand_to_rgba(src + i * c, c, uint8_t(255), &t.rgba8[i * 4]);
     return t;
   }
   int c = file.channels;

@@ -198,8 +198,7 @@ struct WhittedIntegrator {
       const bool pbr = m.model == Material::Model::metallic_roughness;
       if (pbr && m.pbr.thickness > 0.f && glm::dot(ray.direction, sp.geometric_normal) > 0.f)
         c *= volume_transmittance(m.pbr, h.t * glm::length(ray.direction));
-      const float alpha =
-          pbr && m.pbr.alpha_mode == PbrMaterial::AlphaMode::blend ? std::clamp(k.a, 0.f, 1.f) : 1.f;
+      const float alpha = pbr && m.pbr.alpha_mode == PbrMaterial::AlphaMode::blend ? std::clamp(k.a, 0.f, 1.f) : 1.f;
       sum += through * alpha * c;
       through *= 1.f - alpha;
       if (!(through > 0.f)) {

@@ -52,17 +52,17 @@ struct PbrMaterial {
     blend,   // the surface covers the fraction alpha of what lies behind it
   };
   // pbrMetallicRoughness
-  vec4 base_color{1.f};  // rgb and alpha (opacity)
+  vec4 base_color{1.f};            // rgb and alpha (opacity)
   TextureSlot base_color_texture;  // RGBA, sRGB
   float metallic = 1.f, roughness = 1.f;
   TextureSlot metallic_roughness_texture;  // B: metallic, G: roughness
   // Core textures and factors
-  TextureSlot normal_texture;  // tangent-space normal, RGB = (x, y, z) * 0.5 + 0.5
-  float normal_scale = 1.f;    // scales the x and y of the texel's normal
+  TextureSlot normal_texture;     // tangent-space normal, RGB = (x, y, z) * 0.5 + 0.5
+  float normal_scale = 1.f;       // scales the x and y of the texel's normal
   TextureSlot occlusion_texture;  // R
   float occlusion_strength = 1.f;
   vec3 emissive{0.f};
-  TextureSlot emissive_texture;  // RGB, sRGB
+  TextureSlot emissive_texture;   // RGB, sRGB
   float emissive_strength = 1.f;  // KHR_materials_emissive_strength
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;  // AlphaMode::mask
@@ -80,7 +80,7 @@ struct PbrMaterial {
   // KHR_materials_volume: thickness 0 is a thin-walled surface; above 0 the
   // mesh bounds a volume that attenuates light by Beer-Lambert's law,
   // transmittance = attenuation_color ^ (distance / attenuation_distance)
-  float thickness = 0.f;  // in the mesh's object space
+  float thickness = 0.f;          // in the mesh's object space
   TextureSlot thickness_texture;  // G
   vec3 attenuation_color{1.f};
   float attenuation_distance = std::numeric_limits<float>::infinity();  // world units
@@ -100,11 +100,20 @@ struct PbrMaterial {
 
 // Every texture slot of a material, for code that treats them alike.
 inline std::array<const TextureSlot*, 14> pbr_texture_slots(const PbrMaterial& m) {
-  return {&m.base_color_texture,  &m.metallic_roughness_texture, &m.normal_texture,
-          &m.occlusion_texture,   &m.emissive_texture,           &m.specular_texture,
-          &m.specular_color_texture, &m.transmission_texture,    &m.thickness_texture,
-          &m.clearcoat_texture,   &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture,
-          &m.sheen_color_texture, &m.sheen_roughness_texture};
+  return {&m.base_color_texture,
+          &m.metallic_roughness_texture,
+          &m.normal_texture,
+          &m.occlusion_texture,
+          &m.emissive_texture,
+          &m.specular_texture,
+          &m.specular_color_texture,
+          &m.transmission_texture,
+          &m.thickness_texture,
+          &m.clearcoat_texture,
+          &m.clearcoat_roughness_texture,
+          &m.clearcoat_normal_texture,
+          &m.sheen_color_texture,
+          &m.sheen_roughness_texture};
 }
 
 }  // namespace rayform

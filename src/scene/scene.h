@@ -159,9 +159,9 @@ struct Mesh {
   std::string name;
   std::string source_path;  // file it was read from, if any
   std::vector<vec3> positions;
-  std::vector<vec3> normals;        // empty: face normals
-  std::vector<vec2> uvs;            // empty: no texture coordinates (glTF TEXCOORD_0)
-  std::vector<vec2> uvs1;           // a second set (glTF TEXCOORD_1), empty or one per position
+  std::vector<vec3> normals;  // empty: face normals
+  std::vector<vec2> uvs;      // empty: no texture coordinates (glTF TEXCOORD_0)
+  std::vector<vec2> uvs1;     // a second set (glTF TEXCOORD_1), empty or one per position
   // Tangents (xyz, unit, in object space) and the bitangent's sign w (+-1):
   // bitangent = w cross(normal, tangent). Empty: generated where a normal
   // texture needs them (render/prepare).

@@ -83,7 +83,7 @@ TEST(AssetRender, DuckObjAndGltfAgreeInGeometryAndAlbedo) {
       "duck obj vs gltf, 200x200, %zu duck pixels: colour %.3f%%, albedo %.3f%% over 4/255; "
       "depth %.3f%% over 1e-3; normals %.3f%% over 0.8 degrees\n",
       hits, colour, albedo, 100.0 * double(depth_over) / n, 100.0 * double(normal_over) / n);
-  EXPECT_GT(hits, 5000u);  // the duck fills a good part of the picture
+  EXPECT_GT(hits, 5000u);                // the duck fills a good part of the picture
   double red_obj = 0.0, red_gltf = 0.0;  // and each is lit: a yellow duck, not a black one
   for (size_t i = 0; i < obj.depth.size(); ++i)
     if (std::isfinite(obj.depth[i])) {

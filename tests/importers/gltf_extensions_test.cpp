@@ -552,7 +552,8 @@ TEST_F(GltfExtensions, MaterialExtensionsAreKept) {
         {{"KHR_materials_pbrSpecularGlossiness",
           {{"diffuseFactor", {0.2, 0.4, 0.6, 1.0}}, {"specularFactor", {0.1, 0.1, 0.1}}, {"glossinessFactor", 0.5}}}}}},
       {{"pbrMetallicRoughness", pbr},
-       {"extensions", {{"KHR_materials_sheen", {{"sheenColorFactor", {0.3, 0.2, 0.1}}, {"sheenRoughnessFactor", 0.4}}}}}},
+       {"extensions",
+        {{"KHR_materials_sheen", {{"sheenColorFactor", {0.3, 0.2, 0.1}}, {"sheenRoughnessFactor", 0.4}}}}}},
   });
   std::vector<std::string> warnings;
   std::vector<ExtensionUse> used;

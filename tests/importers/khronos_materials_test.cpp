@@ -98,10 +98,7 @@ std::function<void(json&)> without(const std::string& key) {
 // The picture `rayform render IN -o OUT.png` makes at 256x256 with `extra`
 // options (RGBA when --transparent is among them).
 DecodedImage render(const fs::path& in, const fs::path& out, const std::string& extra = "") {
-  const char* bin = std::getenv("RAYFORM_BIN");
-  EXPECT_NE(bin, nullptr) << "RAYFORM_BIN must name the rayform binary";
-  if (!bin) return {};
-  const std::string command = std::string("'") + bin + "' render '" + in.string() + "' -o '" + out.string() +
+  const std::string command = "'" + test::rayform_binary() + "' render '" + in.string() + "' -o '" + out.string() +
                               "' --size 256x256 --threads 2 -q " + extra + " 2>'" + out.string() + ".log'";
   EXPECT_EQ(std::system(command.c_str()), 0) << command << "\n" << read_bytes(out.string() + ".log");
   return read_image_file(out.string());
@@ -170,8 +167,8 @@ TEST_F(KhronosMaterials, EmissiveTexturesLeaveNoWhiteSilhouettes) {
       const PixelCounts c = count(render(in, dir_ / (std::string(model) + ".png"), options));
       ASSERT_GT(c.covered, 0) << model;
       std::printf("%s %s: %.4f of the model's pixels white\n", model, options, c.white / c.covered);
-      EXPECT_LT(c.white / c.covered, 0.03) << model << " " << options << ": " << c.white << " of " << c.covered
-                                           << " model pixels are white";
+      EXPECT_LT(c.white / c.covered, 0.03)
+          << model << " " << options << ": " << c.white << " of " << c.covered << " model pixels are white";
     }
   }
 }
@@ -183,9 +180,9 @@ TEST_F(KhronosMaterials, NormalMetallicRoughnessAndOcclusionTexturesAreDrawn) {
     const char* model;
     const char* key;
   };
-  for (const Case& c : {Case{"NormalTangentTest", "normalTexture"}, Case{"NormalTangentMirrorTest", "normalTexture"},
-                        Case{"BoomBoxWithAxes", "metallicRoughnessTexture"},
-                        Case{"NormalTangentTest", "occlusionTexture"}}) {
+  for (const Case& c :
+       {Case{"NormalTangentTest", "normalTexture"}, Case{"NormalTangentMirrorTest", "normalTexture"},
+        Case{"BoomBoxWithAxes", "metallicRoughnessTexture"}, Case{"NormalTangentTest", "occlusionTexture"}}) {
     const fs::path in = sample(c.model);
     ASSERT_FALSE(in.empty()) << c.model;
     const DecodedImage with = render(in, dir_ / "with.png");
