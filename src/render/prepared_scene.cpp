@@ -41,6 +41,47 @@ int shape_count(const Scene& s, ShapeKind k) {
   return 0;
 }
 
+// The corner tangents (PreparedScene::corner_tangents) of the used meshes a
+// normal texture is drawn on whose file gave no tangents.
+void generate_tangents(PreparedScene& p) {
+  const Scene& scene = *p.scene;
+  p.corner_tangents.resize(scene.meshes.size());
+  std::vector<int> tangent_uv_set(scene.meshes.size(), -1);
+  auto needs_tangents = [&](int material) -> int {  // the uv set of its normal texture, or -1
+    const Material& m = p.materials[size_t(material)];
+    if (m.model != Material::Model::metallic_roughness) return -1;
+    if (m.pbr.normal_texture.used()) return m.pbr.normal_texture.texcoord;
+    if (m.pbr.clearcoat_normal_texture.used()) return m.pbr.clearcoat_normal_texture.texcoord;
+    return -1;
+  };
+  for (const Instance& inst : p.instances) {
+    if (inst.kind != ShapeKind::mesh) continue;
+    const Mesh& m = scene.meshes[size_t(inst.shape)];
+    if (!m.tangents.empty()) continue;
+    int& set = tangent_uv_set[size_t(inst.shape)];
+    if (set < 0) set = needs_tangents(inst.material);
+    for (int fm : m.face_materials)
+      if (set < 0 && fm >= 0 && fm < int(scene.materials.size())) set = needs_tangents(fm);
+  }
+  tbb::parallel_for(size_t(0), scene.meshes.size(), [&](size_t i) {
+    if (tangent_uv_set[i] >= 0) p.corner_tangents[i] = corner_tangents(scene.meshes[i], tangent_uv_set[i]);
+  });
+}
+
+// The six faces of a cube map are one picture's six sides: the same size.
+void check_cube_map_faces(const PreparedScene& p) {
+  const Scene& scene = *p.scene;
+  for (size_t i = 1; i < p.cube_map.size(); ++i)
+    if (p.cube_map[i].width != p.cube_map[0].width || p.cube_map[i].height != p.cube_map[0].height) {
+      auto face = [&](size_t f) {
+        return scene.textures[size_t(scene.background.cube_map[f])].path + " (" + std::to_string(p.cube_map[f].width) +
+               "x" + std::to_string(p.cube_map[f].height) + ")";
+      };
+      throw Error(face(i) + ": cube map face of another size than " + face(0) +
+                  ": the six faces must be the same size");
+    }
+}
+
 }  // namespace
 
 size_t PreparedScene::memory_bytes() const {
@@ -181,28 +222,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       use_texture(m.diffuse_texture);
     }
   }
-  // Tangents for the meshes a normal texture is drawn on that have none.
-  p.corner_tangents.resize(scene.meshes.size());
-  std::vector<int> tangent_uv_set(scene.meshes.size(), -1);
-  auto needs_tangents = [&](int material) -> int {  // the uv set of its normal texture, or -1
-    const Material& m = p.materials[size_t(material)];
-    if (m.model != Material::Model::metallic_roughness) return -1;
-    if (m.pbr.normal_texture.used()) return m.pbr.normal_texture.texcoord;
-    if (m.pbr.clearcoat_normal_texture.used()) return m.pbr.clearcoat_normal_texture.texcoord;
-    return -1;
-  };
-  for (const Instance& inst : p.instances) {
-    if (inst.kind != ShapeKind::mesh) continue;
-    const Mesh& m = scene.meshes[size_t(inst.shape)];
-    if (!m.tangents.empty()) continue;
-    int& set = tangent_uv_set[size_t(inst.shape)];
-    if (set < 0) set = needs_tangents(inst.material);
-    for (int fm : m.face_materials)
-      if (set < 0 && fm >= 0 && fm < int(scene.materials.size())) set = needs_tangents(fm);
-  }
-  tbb::parallel_for(size_t(0), scene.meshes.size(), [&](size_t i) {
-    if (tangent_uv_set[i] >= 0) p.corner_tangents[i] = corner_tangents(scene.meshes[i], tangent_uv_set[i]);
-  });
+  generate_tangents(p);
   if (f.pbr) {  // the BRDF's tables, made once before the render's threads need them
     ggx_split_sum(1.f, 1.f);
     if (sheen) sheen_directional_albedo(1.f, 1.f);
@@ -227,16 +247,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     *to_decode[j].second =
         decode_texture(scene.textures[to_decode[j].first], DecodeOptions{options.limits.texture_texels});
   });
-  // The six faces of a cube map are one picture's six sides: the same size.
-  for (size_t i = 1; i < p.cube_map.size(); ++i)
-    if (p.cube_map[i].width != p.cube_map[0].width || p.cube_map[i].height != p.cube_map[0].height) {
-      auto face = [&](size_t f) {
-        return scene.textures[size_t(scene.background.cube_map[f])].path + " (" + std::to_string(p.cube_map[f].width) +
-               "x" + std::to_string(p.cube_map[f].height) + ")";
-      };
-      throw Error(face(i) + ": cube map face of another size than " + face(0) +
-                  ": the six faces must be the same size");
-    }
+  check_cube_map_faces(p);
   return p;
 }
 
