@@ -211,9 +211,12 @@ struct WhittedIntegrator {
 
   // The share of a light's colour that reaches the hit point: 0 or 1, or
   // with blended materials the product of 1 - alpha over the blended
-  // surfaces on the way (any other surface blocks).
+  // surfaces on the way (any other surface blocks). With cut-outs or
+  // blending the way is followed hit by hit (closest), so that light passes
+  // through the holes of a MASK texture.
   vec3 light_through(const SurfacePoint& sp, const Light& l, const LightSample& ls) const {
-    if (!prepared.features.blend) return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
+    if (!prepared.features.blend && !prepared.features.alpha_cutout)
+      return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
     Ray shadow = l.kind == Light::Kind::directional
                      ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
                      : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);

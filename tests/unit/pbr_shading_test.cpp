@@ -1,0 +1,110 @@
+// The integrator's metallic-roughness path on hand-built scenes: light
+// passes the holes of a MASK texture and a blended surface lets 1 - alpha
+// through (shadow rays), and a camera ray through a blended surface is
+// covered by alpha (AlphaMode coverage).
+#include "rayform/render/prepared_scene.h"
+#include "rayform/render/whitted_integrator.h"
+#include "test_scenes.h"
+
+#include <gtest/gtest.h>
+
+namespace rayform {
+namespace {
+
+// A white rough dielectric.
+Material white_matte() {
+  Material m;
+  m.model = Material::Model::metallic_roughness;
+  m.pbr.metallic = 0.f;
+  m.pbr.roughness = 1.f;
+  return m;
+}
+
+// A square at height 1 over x, z in [-1, 1] (uv u = (x + 1) / 2), and
+// optionally the floor y = 0 below it, lit from straight above.
+Scene square_over_floor(const Material& square_material, bool floor) {
+  Scene s;
+  Mesh quad;
+  quad.positions = {{-1.f, 1.f, -1.f}, {1.f, 1.f, -1.f}, {1.f, 1.f, 1.f}, {-1.f, 1.f, 1.f}};
+  quad.uvs = {{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  s.meshes.push_back(quad);
+  s.planes.push_back(Plane{{0.f, 1.f, 0.f}, 0.f});
+  s.materials = {white_matte(), square_material};
+  // Two texels: the left (u < 1/2) transparent, the right opaque.
+  Texture t;
+  t.width = 2;
+  t.height = 1;
+  t.channels = 4;
+  t.pixels = {255, 255, 255, 0, 255, 255, 255, 255};
+  t.filter = Texture::Filter::nearest;
+  t.wrap_u = t.wrap_v = Texture::Wrap::clamp;
+  s.textures.push_back(t);
+  Light sun;
+  sun.direction = {0.f, -1.f, 0.f};
+  s.lights.push_back(sun);
+  std::vector<Node> children = {test::shape_node(ShapeKind::mesh, 0, 1)};
+  if (floor) children.push_back(test::shape_node(ShapeKind::plane, 0, 0));
+  test::add_root_group(s, children);
+  return s;
+}
+
+// The colour of floor point (x, 0, 0) seen from below the square.
+vec3 floor_colour(const Scene& scene, float x) {
+  const PreparedScene p = prepare_scene(scene);
+  RenderOptions o;
+  o.shadows = true;
+  const WhittedIntegrator<true, true, true> integrator{p, o, scene};
+  const vec3 from(x, 0.5f, 3.f), to(x, 0.f, 0.f);
+  float coverage;
+  return integrator.radiance(Ray{from, to - from}, 0, &coverage);
+}
+
+TEST(PbrShading, LightPassesTheHolesOfAMask) {
+  Material mask = white_matte();
+  mask.pbr.alpha_mode = PbrMaterial::AlphaMode::mask;
+  mask.pbr.base_color_texture.texture = 0;
+  const Scene scene = square_over_floor(mask, true);
+  const vec3 under_hole = floor_colour(scene, -0.5f), under_opaque = floor_colour(scene, 0.5f);
+  EXPECT_GT(under_hole.g, 0.3f);
+  EXPECT_EQ(under_opaque, vec3(0.f));
+}
+
+TEST(PbrShading, BlendedSurfacesLetOneMinusAlphaThrough) {
+  Material blend = white_matte();
+  blend.pbr.alpha_mode = PbrMaterial::AlphaMode::blend;
+  blend.pbr.base_color.a = 0.25f;
+  const vec3 behind = floor_colour(square_over_floor(blend, true), 0.5f);
+  Material clear = blend;
+  clear.pbr.base_color.a = 0.f;  // a blended alpha of 0: nothing there
+  const vec3 open = floor_colour(square_over_floor(clear, true), 0.5f);
+  ASSERT_GT(open.g, 0.3f);
+  EXPECT_NEAR(behind.g / open.g, 0.75f, 1e-6f);
+}
+
+TEST(PbrShading, CameraRaysThroughABlendedSurfaceAreCoveredByAlpha) {
+  Material square = white_matte();
+  square.two_sided_lighting = true;  // lit from above, seen from above
+  auto seen_from_above = [&](PbrMaterial::AlphaMode mode, float* coverage) {
+    Material m = square;
+    m.pbr.alpha_mode = mode;
+    m.pbr.base_color.a = 0.25f;
+    Scene scene = square_over_floor(m, false);
+    scene.background.color = vec3(0.2f, 0.4f, 0.6f);
+    const PreparedScene p = prepare_scene(scene);
+    const RenderOptions o;
+    const WhittedIntegrator<true, true, true> integrator{p, o, scene};
+    return integrator.radiance(Ray{{0.f, 5.f, 0.f}, {0.f, -1.f, 0.f}}, 0, coverage);
+  };
+  float coverage_opaque, coverage_blend;
+  const vec3 opaque = seen_from_above(PbrMaterial::AlphaMode::opaque, &coverage_opaque);
+  const vec3 blend = seen_from_above(PbrMaterial::AlphaMode::blend, &coverage_blend);
+  EXPECT_EQ(coverage_opaque, 1.f);
+  EXPECT_FLOAT_EQ(coverage_blend, 0.25f);
+  ASSERT_GT(opaque.g, 0.3f);
+  const vec3 expected = 0.25f * opaque + 0.75f * vec3(0.2f, 0.4f, 0.6f);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(blend[k], expected[k], 1e-6f) << k;
+}
+
+}  // namespace
+}  // namespace rayform
