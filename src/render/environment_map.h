@@ -114,7 +114,8 @@ float environment_pdf(const EnvironmentMap& map, vec3 direction);
 
 // The default environment, made by the program (issue 31: "a neutral studio,
 // no file needed"), so that metals reflect something out of the box. Neutral
-// grey (R = G = B) everywhere, in linear radiance:
+// grey (R = G = B) everywhere; linear radiance, the values below before the
+// final scale (last item):
 // - a backdrop by elevation e (radians above the horizon): a dark floor
 //   (0.10 towards the nadir) rising through a soft horizon band (e from -0.25
 //   to 0.10) to a light grey wall (0.42) and a brighter ceiling (0.55 at the
