@@ -181,6 +181,12 @@ TEST(PbrSampling, ReflectedDirectionPdfAccountsForTheSamplesAboveTheHorizon) {
       const double quadrature_error = 2e-3;
       EXPECT_NEAR(above, fraction, 3.0 * se + quadrature_error) << "alpha " << alpha << " n.v " << nv;
       EXPECT_NEAR(above + below, 1.0, quadrature_error) << "alpha " << alpha << " n.v " << nv;
+      // Seen along n, l = 2 (n.h) h - n is above the horizon where theta_h <
+      // 45 degrees, of probability tan^2 / (alpha^2 + tan^2) = 1 / (alpha^2 + 1)
+      // (the GGX's cumulative distribution; the VNDF at v = n is D (n.h)).
+      if (nv == 1.f) {
+        EXPECT_NEAR(above, 1.0 / (double(alpha) * alpha + 1.0), quadrature_error) << "alpha " << alpha;
+      }
     }
 }
 
