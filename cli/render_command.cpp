@@ -109,12 +109,37 @@ struct RenderArgs {
   ReadFlags read;
   std::string size;  // empty: the default for the scene's format
   std::string depth, dialect, filter = "box", sampler = "stratified", color = "auto";
-  std::string orbit, look_from, look_at, up, background, tonemap;
-  float fov = 0.f;
+  std::string orbit, look_from, look_at, up, background, tonemap, env;
+  float fov = 0.f, env_intensity = 1.f, env_rotate = 0.f;
   // Options whose presence matters (given, even with an empty value).
   CLI::Option *camera = nullptr, *orbit_option = nullptr, *fov_option = nullptr, *background_option = nullptr,
-              *bounces = nullptr, *frames = nullptr, *tonemap_option = nullptr;
+              *bounces = nullptr, *frames = nullptr, *tonemap_option = nullptr, *env_option = nullptr,
+              *env_intensity_option = nullptr, *env_rotate_option = nullptr;
 };
+
+// The environment the flags ask for: --env FILE, studio or none, and its
+// --env-intensity and --env-rotate (which alone change the default's).
+std::optional<Environment> parse_environment(const RenderArgs& a) {
+  if (a.env_option->count() == 0 && a.env_intensity_option->count() == 0 && a.env_rotate_option->count() == 0)
+    return std::nullopt;
+  if (!(a.env_intensity >= 0.f) || !std::isfinite(a.env_intensity))
+    throw UsageError("--env-intensity expects a finite number >= 0, got '" + a.env_intensity_option->as<std::string>() +
+                     "'");
+  if (!std::isfinite(a.env_rotate))
+    throw UsageError("--env-rotate expects degrees, got '" + a.env_rotate_option->as<std::string>() + "'");
+  Environment e;
+  e.intensity = a.env_intensity;
+  e.rotation_deg = a.env_rotate;
+  if (a.env_option->count() == 0 || a.env == "studio") {
+    e.source = Environment::Source::studio;
+  } else if (a.env == "none") {
+    e.source = Environment::Source::none;
+  } else {
+    e.source = Environment::Source::file;
+    e.path = a.env;
+  }
+  return e;
+}
 
 // Once the flags are parsed: the job completed from them, checked, and run
 // (one picture over every rank under mpirun, or a batch).
@@ -149,6 +174,7 @@ void run_render_args(RenderArgs& a) {
   if (!a.look_at.empty()) a.job.camera_adjust.look_at = parse_vec3(a.look_at, "--look-at");
   if (!a.up.empty()) a.job.camera_adjust.up = parse_vec3(a.up, "--up");
   if (background->count() > 0) a.job.background = parse_background(a.background);
+  a.job.environment = parse_environment(a);
   if (fov->count() > 0) {
     if (!(a.fov > 0.f && a.fov < 180.f))
       throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
@@ -290,6 +316,22 @@ void add_render_command(CLI::App& app) {
               "Background colour as a colour picker gives it: R,G,B with each 0..1 (0.5,0.5,1) or #RRGGBB with "
               "0-255 values in hexadecimal (#8080ff); the 8-bit output shows exactly these values")
           ->type_name("R,G,B|#RRGGBB");
+  a->env_option =
+      render
+          ->add_option("--env", a->env,
+                       "Environment light for physically based materials, also seen where rays leave the scene: an "
+                       "equirectangular HDR picture (.exr, .hdr, .pfm; linear, +y up, +x at its centre), 'studio' "
+                       "(built in) or 'none' (default: studio for files with such materials and no light of their "
+                       "own, which then get no light rig; else none)")
+          ->type_name("FILE|studio|none");
+  a->env_intensity_option =
+      render->add_option("--env-intensity", a->env_intensity, "Scale of the environment's radiance (default 1)")
+          ->type_name("K");
+  a->env_rotate_option =
+      render
+          ->add_option("--env-rotate", a->env_rotate,
+                       "Turn the environment about +y by DEG degrees (counter-clockwise seen from above)")
+          ->type_name("DEG");
   render->add_flag("--transparent", job.transparent,
                    "Background as alpha 0 (surfaces 1, edges between) in the colour output: .png/.tga with straight "
                    "alpha, .exr/.tif premultiplied");

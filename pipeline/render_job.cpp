@@ -42,6 +42,7 @@ ReadyOptions ready_options(const RenderJob& job) {
   } else if (job.frame) {
     r.frame = true;  // the default camera's place, whatever the fov then makes of it
   }
+  r.environment = job.environment;
   if (job.camera_adjust.any())
     r.adjust_camera = [&job](Scene& s) {
       adjust_camera(s, job.render.camera, job.camera_adjust, job.load.limits.instances);
@@ -66,6 +67,7 @@ ReadyScene load_ready(const RenderJob& job, const JobHooks& hooks) {
     // through sRGB, kept where they are written as they are.
     vec3& b = loaded.scene.background.color;
     b = *job.background;
+    loaded.scene.background.color_shown = true;
     if (shown_through_srgb(ColorOutput{loaded.color.scene, job.color}))
       for (int k = 0; k < 3; ++k) b[k] = linear_from_display(b[k]);
   }

@@ -66,6 +66,8 @@ struct RenderJob {
   // `camera_adjust` then moves the camera rendered.
   bool frame = false;
   std::optional<Orbit> orbit;
+  // The environment to light and show the scene with (ReadyOptions::environment).
+  std::optional<Environment> environment;
   CameraAdjust camera_adjust;
   // Display values 0..1, as a colour picker gives them: for a scene whose
   // pictures are seen through sRGB converted to linear (linear_from_display,

@@ -52,7 +52,18 @@ ReadyScene make_scene_ready(LoadedScene loaded, const std::string& path, const R
     ready.notes.push_back(path + " has no camera: added one framing the scene's bounds");
   }
   if (options.adjust_camera) options.adjust_camera(scene);
-  if (asset && add_light_rig(scene, options.camera))
+  const bool pbr = std::any_of(scene.materials.begin(), scene.materials.end(),
+                               [](const Material& m) { return m.model == Material::Model::metallic_roughness; });
+  if (options.environment) {
+    scene.background.environment = *options.environment;
+  } else if (asset && pbr && scene.lights.empty()) {
+    scene.background.environment.source = Environment::Source::studio;
+    ready.notes.push_back(path + " has no light: lit by the built-in studio environment (--env FILE for another)");
+  }
+  // The light rig, for what the environment does not light: the course's
+  // Phong materials.
+  const bool lit_by_environment = pbr && scene.background.environment.source != Environment::Source::none;
+  if (asset && !lit_by_environment && add_light_rig(scene, options.camera))
     ready.notes.push_back(path + " has no light: added the default light rig (a head-light, a key and a fill) " +
                           "around the camera");
   ready.color.scene = scene_colors(ready.format);

@@ -77,6 +77,11 @@ struct ReadyOptions {
   // orbit's) and before the lights are added, to change the cameras (the
   // command line's --look-from, --look-at, --up, --fov); may throw.
   std::function<void(Scene&)> adjust_camera;
+  // The environment the scene is lit by and shows (the command line's --env,
+  // --env-intensity, --env-rotate). When not set, an asset with
+  // metallic-roughness materials and no light of its own gets the studio
+  // environment (Environment::Source::studio) instead of the light rig.
+  std::optional<Environment> environment;
 };
 
 struct ReadyScene : LoadedScene {

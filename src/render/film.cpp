@@ -32,7 +32,7 @@ Film::Film(const PreparedScene& p, const RenderOptions& o, RenderResult& result)
       albedo_(o.albedo),
       alpha_(o.alpha != AlphaMode::none),
       premultiplied_(o.alpha == AlphaMode::premultiplied),
-      cube_map_(p.features.cube_map),
+      cube_map_(p.features.cube_map || p.features.environment_shown),
       exposure_scale_(std::exp2(o.exposure_ev)),
       tone_map_(o.color_format == ColorFormat::linear_float ? ToneMap::none : o.tone_map),
       grades_(exposure_scale_ != 1.f || tone_map_ != ToneMap::none) {

@@ -199,6 +199,7 @@ BrdfSample sample_pbr(const PbrSurface& s, vec3 n, vec3 v, vec3 u3) {
   }
   l = glm::normalize(l);
   out.direction = l;
+  out.diffuse = lobe == Lobe::diffuse;
   if (glm::dot(n, l) <= 0.f) return out;  // below the surface: no sample
   out.pdf = mixture_pdf(L, l);
   if (!(out.pdf > 0.f)) {

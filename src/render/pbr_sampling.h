@@ -113,6 +113,7 @@ struct BrdfSample {
   // material reflects and transmits nothing): end the path.
   float pdf = 0.f;
   bool specular_transmission = false;
+  bool diffuse = false;  // drawn from the diffuse lobe (light transport without diffuse interreflection ends there)
 };
 
 // Samples one bounce of the whole material with 3 random numbers u3 in

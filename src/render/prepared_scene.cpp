@@ -1,5 +1,6 @@
 #include "rayform/render/prepared_scene.h"
 
+#include "rayform/image/image.h"
 #include "rayform/render/pbr_brdf.h"
 #include "rayform/scene/mesh_tangents.h"
 
@@ -223,6 +224,20 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     }
   }
   generate_tangents(p);
+  const Environment& env = scene.background.environment;
+  if (f.pbr && env.source != Environment::Source::none) {
+    f.environment = true;
+    f.environment_shown = !scene.background.color_shown;
+    const float rotation = radians(env.rotation_deg);
+    if (env.source == Environment::Source::studio) {
+      p.environment = studio_environment();
+      p.environment.intensity = env.intensity;
+      p.environment.rotation = rotation;
+    } else {
+      p.environment = environment_from_image(read_image(env.path, DecodeOptions{options.limits.texture_texels}),
+                                             env.intensity, rotation);
+    }
+  }
   if (f.pbr) {  // the BRDF's tables, made once before the render's threads need them
     ggx_split_sum(1.f, 1.f);
     if (sheen) sheen_directional_albedo(1.f, 1.f);

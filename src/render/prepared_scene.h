@@ -6,6 +6,7 @@
 
 #include "rayform/accel/bvh.h"
 #include "rayform/accel/mesh_accel.h"
+#include "rayform/render/environment_map.h"
 #include "rayform/render/mesh_accel_cache.h"
 #include "rayform/render/texture_sampler.h"
 #include "rayform/base/limits.h"
@@ -54,6 +55,10 @@ struct SceneFeatures {
   bool pbr = false;
   bool blend = false;         // some pbr material blends (alpha mode BLEND): shadows then pass it in part
   bool transmission = false;  // some pbr material transmits light
+  // An environment lights the pbr materials (PreparedScene::environment);
+  // shown: camera rays that miss see it (no background colour asked for).
+  bool environment = false;
+  bool environment_shown = false;
 };
 
 // A light with what shading needs at every hit computed once.
@@ -93,6 +98,7 @@ struct PreparedScene {
   std::vector<TextureImage> textures;  // per Scene texture; empty image if unused
   std::vector<Material> materials;     // the Scene's, then one default material
   std::vector<TextureImage> cube_map;  // six faces, or empty
+  EnvironmentMap environment;          // features.environment: the Scene's, with its sampling distribution
   std::vector<PreparedLight> lights;   // the Scene's, in order
   SceneFeatures features;
   Bounds3 bounds;  // of the bounded instances, world space

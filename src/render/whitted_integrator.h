@@ -10,18 +10,38 @@
 #pragma once
 
 #include "rayform/geometry/ray_offset.h"
+#include "rayform/math/hash.h"
 #include "rayform/math/perlin_noise.h"
 #include "rayform/render/cube_map.h"
+#include "rayform/render/environment_map.h"
+#include "rayform/render/pbr_sampling.h"
 #include "rayform/render/prepared_scene.h"
 #include "rayform/render/render.h"
+#include "rayform/render/sampling.h"
 #include "rayform/render/scene_intersect.h"
 #include "rayform/render/shade_pbr.h"
 #include "rayform/render/shade_phong.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace rayform {
+
+// The seed of a camera ray's random numbers (metallic-roughness shading
+// under an environment): a hash of the bits of its origin and direction, so
+// that a sample's numbers are the same whatever the thread, the tile order or
+// the process that traces it.
+inline uint32_t ray_seed(const Ray& r) {
+  const float parts[6] = {r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z};
+  uint32_t h = 0x9e3779b9u;
+  for (float f : parts) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    h = hash_bits(h ^ bits);
+  }
+  return h;
+}
 
 // The index of refraction outside every object (air): camera rays start in
 // it, and a ray leaving a refractive object passes into it.
@@ -52,7 +72,19 @@ struct WhittedIntegrator {
   // shadow, Material::back_faces_cast_shadows) rather than any hit.
   bool closest_shadows = prepared.features.back_face_shadow_gaps;
 
-  vec3 miss(const Ray& ray) const {
+  // What a ray that leaves the scene sees: the environment (for a camera
+  // ray, depth 0, only where it is shown), the cube map or the background
+  // colour. `brdf_pdf` > 0: the ray was sampled by a BRDF with that pdf, and
+  // the environment is weighted by multiple importance sampling against the
+  // environment's own samples (shade_pbr).
+  vec3 miss(const Ray& ray, int depth = 0, float brdf_pdf = 0.f) const {
+    if (prepared.features.environment && (depth > 0 || prepared.features.environment_shown)) {
+      // Seen directly: interpolated. Weighed against the environment's
+      // samples: the texel those samples carry (the same integrand).
+      if (!(brdf_pdf > 0.f)) return environment_radiance_bilinear(prepared.environment, ray.direction);
+      return environment_radiance(prepared.environment, ray.direction) *
+             power_heuristic(brdf_pdf, environment_pdf(prepared.environment, ray.direction));
+    }
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
   }
 
@@ -127,16 +159,22 @@ struct WhittedIntegrator {
   // (camera rays: outside_index), and the fraction of it that surfaces
   // cover (*coverage: 1 on a hit, 0 on a miss, between behind blended
   // surfaces; for AlphaMode).
-  vec3 radiance(const Ray& ray, int depth, float* coverage, float medium = outside_index) const {
+  // `seed` and `brdf_pdf` matter to metallic-roughness shading under an
+  // environment only: the random numbers of a secondary ray (camera rays
+  // take theirs from the ray itself, ray_seed), and the pdf it was sampled
+  // with (miss).
+  vec3 radiance(const Ray& ray, int depth, float* coverage, float medium = outside_index, uint32_t seed = 0,
+                float brdf_pdf = 0.f) const {
     if constexpr (shades_pbr)
-      if (prepared.features.blend || prepared.features.transmission) return radiance_layers(ray, depth, coverage);
+      if (prepared.features.blend || prepared.features.transmission)
+        return radiance_layers(ray, depth, coverage, seed, brdf_pdf);
     Hit h;
     SurfacePoint sp;
     vec4 k(0.f);
     const bool hit = closest(ray, &h, &sp, &k);
     *coverage = hit ? 1.f : 0.f;
-    if (!hit) return miss(ray);
-    return shade(ray, sp, vec3(k), depth, medium);
+    if (!hit) return miss(ray, depth, brdf_pdf);
+    return shade(ray, sp, vec3(k), depth, medium, seed);
   }
 
   // Whether radiance() goes through radiance_layers (blended or
@@ -154,11 +192,13 @@ struct WhittedIntegrator {
     return c - (1.f - coverage) * miss(ray);
   }
 
-  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth, float medium = outside_index) const {
+  vec3 shade(const Ray& ray, const SurfacePoint& sp, vec3 k, int depth, float medium = outside_index,
+             uint32_t seed = 0) const {
     const Material& m = prepared.materials[sp.material];
     if (m.unlit) return k;
     if constexpr (shades_pbr)
-      if (m.model == Material::Model::metallic_roughness) return shade_pbr(ray, sp, m, k, depth);
+      if (m.model == Material::Model::metallic_roughness)
+        return shade_pbr(ray, sp, m, k, depth, depth == 0 ? ray_seed(ray) : seed);
     // The unit view direction, for highlights and secondary rays only.
     vec3 d(0.f);
     if constexpr (Specular) d = glm::normalize(ray.direction);
@@ -182,7 +222,7 @@ struct WhittedIntegrator {
   // materials: a blended hit of alpha a adds a times its colour and lets
   // 1 - a of the rest of the ray through (in ray order); a hit seen from
   // inside a volume is attenuated over the distance the ray travelled in it.
-  vec3 radiance_layers(Ray ray, int depth, float* coverage) const {
+  vec3 radiance_layers(Ray ray, int depth, float* coverage, uint32_t seed, float brdf_pdf) const {
     vec3 sum(0.f);
     float through = 1.f;  // the share of the ray not yet covered
     for (;;) {
@@ -191,10 +231,10 @@ struct WhittedIntegrator {
       vec4 k(0.f);
       if (!closest(ray, &h, &sp, &k)) {
         *coverage = 1.f - through;
-        return sum + through * miss(ray);
+        return sum + through * miss(ray, depth, brdf_pdf);
       }
       const Material& m = prepared.materials[sp.material];
-      vec3 c = shade(ray, sp, vec3(k), depth);
+      vec3 c = shade(ray, sp, vec3(k), depth, outside_index, seed);
       const bool pbr = m.model == Material::Model::metallic_roughness;
       if (pbr && m.pbr.thickness > 0.f && glm::dot(ray.direction, sp.geometric_normal) > 0.f)
         c *= volume_transmittance(m.pbr, h.t * glm::length(ray.direction));
@@ -217,9 +257,15 @@ struct WhittedIntegrator {
   vec3 light_through(const SurfacePoint& sp, const Light& l, const LightSample& ls) const {
     if (!prepared.features.blend && !prepared.features.alpha_cutout)
       return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
-    Ray shadow = l.kind == Light::Kind::directional
-                     ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
-                     : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position);
+    return way_through(l.kind == Light::Kind::directional
+                           ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
+                           : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position));
+  }
+
+  // The share of light that passes along `shadow` (light_through's rule).
+  vec3 way_through(Ray shadow) const {
+    if (!prepared.features.blend && !prepared.features.alpha_cutout)
+      return occluded(prepared, shadow) ? vec3(0.f) : vec3(1.f);
     float through = 1.f;
     for (;;) {
       Hit h;
@@ -235,6 +281,51 @@ struct WhittedIntegrator {
     }
   }
 
+  // The light of the environment reflected at a metallic-roughness hit
+  // towards v, by multiple importance sampling (power heuristic) of one
+  // environment sample (environment_map.h, shadowed by way_through) and one
+  // BRDF sample (pbr_sampling.h). The BRDF sample's ray sees the
+  // environment if it leaves the scene; from a glossy or coat lobe it goes
+  // on (radiance at depth + 1, up to RenderOptions::bounces), from the
+  // diffuse lobe it ends there (no diffuse interreflection: the `direct`
+  // light transport). Random numbers: sample_random(seed, depth, 0..4).
+  // The occlusion texture is not applied: the environment's visibility is
+  // traced.
+  vec3 environment_light(const SurfacePoint& sp, const PbrPoint& point, vec3 v, int depth, uint32_t seed) const {
+    const PbrSurface& s = point.surface;
+    const vec3 n = point.normal;
+    const EnvironmentMap& env = prepared.environment;
+    vec3 c(0.f);
+    const EnvironmentSample es =
+        sample_environment(env, vec2(sample_random(seed, uint32_t(depth), 0), sample_random(seed, uint32_t(depth), 1)));
+    if (es.pdf > 0.f) {
+      const vec3 f = pbr_reflection(s, n, v, es.direction);
+      if (f != vec3(0.f) && glm::dot(es.direction, sp.geometric_normal) > 0.f) {
+        const vec3 through =
+            way_through(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, es.direction));
+        if (through != vec3(0.f))
+          c += f * es.radiance * through * (power_heuristic(es.pdf, pbr_pdf(s, n, v, es.direction)) / es.pdf);
+      }
+    }
+    const BrdfSample bs =
+        sample_pbr(s, n, v,
+                   vec3(sample_random(seed, uint32_t(depth), 2), sample_random(seed, uint32_t(depth), 3),
+                        sample_random(seed, uint32_t(depth), 4)));
+    // A transmission sample adds nothing here: shade_pbr traces the
+    // transmitted light itself (the reflection's estimate stays unbiased).
+    if (!(bs.pdf > 0.f) || bs.specular_transmission || bs.weight == vec3(0.f) ||
+        glm::dot(bs.direction, sp.geometric_normal) <= 0.f)
+      return c;
+    const Ray r = spawn_ray(sp.position, sp.position_error, sp.geometric_normal, bs.direction);
+    if (!bs.diffuse && depth < options.bounces) {
+      float coverage;
+      return c + bs.weight * radiance(r, depth + 1, &coverage, outside_index, hash_bits(seed + 2u), bs.pdf);
+    }
+    const vec3 through = way_through(r);
+    if (through != vec3(0.f)) c += bs.weight * through * miss(r, depth + 1, bs.pdf);
+    return c;
+  }
+
   // A metallic-roughness hit: emission, the ambient light on the diffuse
   // base, each light through the BRDF (irradiance pi x the light's colour,
   // scene.h), and up to RenderOptions::bounces one mirror-direction ray
@@ -242,7 +333,8 @@ struct WhittedIntegrator {
   // weighted by the transmission (straight through a thin wall, bent by the
   // index into and out of a volume). The occlusion texture scales the
   // indirect light: the ambient term and the reflection ray.
-  vec3 shade_pbr(const Ray& ray, const SurfacePoint& sp, const Material& m, vec3 base, int depth) const {
+  vec3 shade_pbr(const Ray& ray, const SurfacePoint& sp, const Material& m, vec3 base, int depth,
+                 uint32_t seed) const {
     const vec3 d = glm::normalize(ray.direction), v = -d;
     const bool flipped = m.two_sided_lighting && glm::dot(ray.direction, sp.geometric_normal) > 0.f;
     const PbrPoint point = pbr_point(prepared, m.pbr, sp, base, d, flipped);
@@ -261,14 +353,19 @@ struct WhittedIntegrator {
       }
       c += f * (pi * ls.color) * through;
     }
+    if (prepared.features.environment) c += environment_light(sp, point, v, depth, seed);
     if (depth >= options.bounces) return c;
     auto trace_dir = [&](vec3 w) {
       float coverage;
-      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage);
+      return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage,
+                      outside_index, hash_bits(seed + 1u));
     };
     const float n_dot_v = std::max(glm::dot(n, v), 0.f), coat_n_dot_v = glm::dot(s.clearcoat_normal, v);
     const vec3 reflected = d + 2.f * n_dot_v * n;
-    const vec3 specular = pbr_specular_albedo(s, n_dot_v, coat_n_dot_v) * point.occlusion;
+    // Under an environment the reflection is sampled (environment_light);
+    // without one, one mirror ray stands in for it.
+    const vec3 specular =
+        prepared.features.environment ? vec3(0.f) : pbr_specular_albedo(s, n_dot_v, coat_n_dot_v) * point.occlusion;
     vec3 reflection_weight = specular;
     if (s.transmission > 0.f && s.metallic < 1.f) {
       const vec3 weight = pbr_transmission_weight(s, n_dot_v, coat_n_dot_v);

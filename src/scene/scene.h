@@ -194,6 +194,20 @@ struct Node {
   int material = invalid;  // invalid: the default material
 };
 
+// Light arriving from far away in every direction (image-based lighting):
+// an equirectangular radiance map in linear RGB, +Y up, direction d at
+// u = 0.5 + atan2(d.z, d.x) / 2 pi (mod 1, from the left), v = acos(d.y /
+// |d|) / pi (from the top), turned by `rotation_deg` about +Y; or the
+// studio the program makes (render/environment_map.h). It lights the
+// metallic-roughness materials and is what rays that leave the scene see.
+struct Environment {
+  enum class Source : uint8_t { none, file, studio };
+  Source source = Source::none;
+  std::string path;          // Source::file: an EXR, HDR or PFM picture
+  float intensity = 1.f;     // radiance scale
+  float rotation_deg = 0.f;  // about +Y, counter-clockwise seen from above
+};
+
 // Background colour or, when cube_map[0] is valid, a cube map (texture handles
 // of the faces in the order right (+x), left (-x), up (+y), down (-y),
 // front (+z), back (-z): the course's file names).
@@ -202,6 +216,11 @@ struct Background {
   vec3 ambient{0.f};
   std::string cube_map_dir;  // as written in the scene
   std::array<int, 6> cube_map{invalid, invalid, invalid, invalid, invalid, invalid};
+  // Source::none: rays that leave the scene see `color` (or the cube map).
+  // Otherwise they see the environment, and camera rays too unless
+  // `color_shown` (a colour asked for, e.g. --background).
+  Environment environment;
+  bool color_shown = false;
 };
 
 struct Scene {
