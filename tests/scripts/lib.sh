@@ -111,3 +111,18 @@ mpi_run() {
   local n=$1; shift
   mpirun --allow-run-as-root --oversubscribe -np "$n" "$RAYFORM_BIN" "$@"
 }
+
+# The errors of a rendered picture against a path-traced reference
+# (reference_pbr.sh, scripts/bench-pbr-accuracy): the mean absolute
+# difference of the sRGB encodings (clamped to 0..1, oiiotool --tocolorspace
+# sRGB) over the image, and over the model's pixels (the mask's alpha as
+# weight). Prints "IMAGE MODEL". Arguments: OURS.exr REFERENCE.exr MASK.exr SCRATCH.exr
+reference_errors() {
+  local mean='s/.*Stats Avg: *\([^ ]*\) \([^ ]*\) \([^ ]*\).*/\1 \2 \3/p' image weighted coverage
+  oiiotool "$1" --ch R,G,B --clamp:min=0:max=1 --tocolorspace sRGB "$2" --ch R,G,B --clamp:min=0:max=1 \
+    --tocolorspace sRGB --absdiff -o "$4" || return 1
+  image=$(oiiotool "$4" --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
+  weighted=$(oiiotool "$4" "$3" --ch A,A,A --mul --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
+  coverage=$(oiiotool "$3" --ch A,A,A --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
+  awk -v i="$image" -v w="$weighted" -v c="$coverage" 'BEGIN { printf "%.6f %.6f\n", i, c > 0 ? w / c : 0 }'
+}

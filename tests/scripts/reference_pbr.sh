@@ -33,9 +33,6 @@ else
   tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fi
 
-# The mean of the three channel averages oiiotool --printstats gives.
-mean_of_stats() { sed -n 's/.*Stats Avg: *\([^ ]*\) \([^ ]*\) \([^ ]*\).*/\1 \2 \3/p' | awk '{print ($1 + $2 + $3) / 3}'; }
-
 n=0 failn=0 image_sum=0 model_sum=0
 while IFS=$'\t' read -r model file eye target up fov size env variant samples seconds exr png mask; do
   [ "$model" = model ] && continue
@@ -52,13 +49,8 @@ while IFS=$'\t' read -r model file eye target up fov size env variant samples se
     continue
   fi
   took=$((SECONDS - start))
-  # sRGB encodings, their absolute difference, and the mask as three channels.
-  oiiotool "$out" --ch R,G,B --clamp:min=0:max=1 --tocolorspace sRGB "$ref/$exr" --ch R,G,B \
-    --clamp:min=0:max=1 --tocolorspace sRGB --absdiff -o "$tmp/$name.diff.exr" || { failn=$((failn + 1)); continue; }
-  image=$(oiiotool "$tmp/$name.diff.exr" --printstats 2>&1 | mean_of_stats)
-  weighted=$(oiiotool "$tmp/$name.diff.exr" "$ref/$mask" --ch A,A,A --mul --printstats 2>&1 | mean_of_stats)
-  coverage=$(oiiotool "$ref/$mask" --ch A,A,A --printstats 2>&1 | mean_of_stats)
-  model_error=$(awk -v w="$weighted" -v c="$coverage" 'BEGIN { printf "%.6f", c > 0 ? w / c : 0 }')
+  read -r image model_error < <(reference_errors "$out" "$ref/$exr" "$ref/$mask" "$tmp/$name.diff.exr") ||
+    { echo "FAIL $model $(basename "$env" .exr): comparison failed"; failn=$((failn + 1)); continue; }
   verdict=$(awk -v i="$image" -v m="$model_error" 'BEGIN {
     printf "%s image %.4f model %.4f", i <= 0.05 && m <= 0.05 ? "PASS" : "FAIL", i, m }')
   echo "${verdict%% *} $model $(basename "$env" .exr) ${verdict#* } (${took} s)"

@@ -5,6 +5,7 @@
 // sphere shows its material's directional albedo (a white furnace).
 #include "rayform/render/pbr_brdf.h"
 #include "rayform/render/prepared_scene.h"
+#include "rayform/render/render.h"
 #include "rayform/render/whitted_integrator.h"
 #include "test_scenes.h"
 
@@ -158,10 +159,43 @@ TEST(PbrShading, WhiteFurnaceUnderAUniformEnvironment) {
   };
   for (const Case& c : {Case{metal, 0.9983f}, Case{dielectric, 0.9722f}}) {
     const Estimate e = furnace(c.m);
-    std::printf("furnace, metallic %.0f: %.5f +- %.5f (albedo %.4f)\n", c.m.pbr.metallic, e.mean, e.standard_error, c.albedo);
+    std::printf("furnace, metallic %.0f: %.5f +- %.5f (albedo %.4f)\n", c.m.pbr.metallic, e.mean, e.standard_error,
+                c.albedo);
     EXPECT_NEAR(e.mean, c.albedo, 3.f * e.standard_error + 1e-3f)
         << "metallic " << c.m.pbr.metallic << ": " << e.mean << " +- " << e.standard_error;
   }
+}
+
+// Under an environment each sample's random numbers come from its camera
+// ray (ray_seed): the picture is the same whatever the threads and tiles.
+TEST(PbrShading, EnvironmentPicturesDoNotDependOnThreadsOrTiles) {
+  Scene s;
+  s.spheres.push_back(Sphere{vec3(0.f), 1.f});
+  Material m = white_matte();
+  m.pbr.metallic = 0.5f;
+  m.pbr.roughness = 0.4f;
+  s.materials = {m};
+  test::add_root_group(s, {test::shape_node(ShapeKind::sphere, 0, 0)});
+  Camera c;
+  c.center = {0.f, 0.f, 5.f};
+  s.cameras = {c};
+  s.background.environment.source = Environment::Source::studio;
+  const PreparedScene p = prepare_scene(s);
+  RenderOptions o;
+  o.width = o.height = 48;
+  o.spp = 4;
+  o.bounces = 4;
+  o.threads = 1;
+  o.tile_size = 16;
+  const RenderResult one = render(p, o);
+  o.threads = 2;
+  o.tile_size = 7;
+  const RenderResult two = render(p, o);
+  ASSERT_EQ(one.color.pixels.size(), two.color.pixels.size());
+  EXPECT_EQ(one.color.pixels, two.color.pixels);
+  float sum = 0.f;
+  for (float v : one.color.pixels) sum += v;
+  EXPECT_GT(sum, 0.f);
 }
 
 }  // namespace
