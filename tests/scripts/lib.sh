@@ -124,5 +124,5 @@ reference_errors() {
   image=$(oiiotool "$4" --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
   weighted=$(oiiotool "$4" "$3" --ch A,A,A --mul --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
   coverage=$(oiiotool "$3" --ch A,A,A --printstats 2>&1 | sed -n "$mean" | awk '{print ($1 + $2 + $3) / 3}')
-  awk -v i="$image" -v w="$weighted" -v c="$coverage" 'BEGIN { printf "%.6f %.6f\n", i, c > 0 ? w / c : 0 }'
+  awk -v i="$image" -v w="$weighted" -v c="$coverage" 'BEGIN { printf "%.6f %.6f\n", i, (c > 0 ? w / c : 0) }'
 }
