@@ -198,6 +198,9 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       if (m.pbr.transmission > 0.f || m.pbr.transmission_texture.used()) m.double_sided = true;
     }
     if (m.specular != vec3(0.f)) f.specular = true;
+    f.emission |= m.model == Material::Model::metallic_roughness
+                      ? m.pbr.emissive * m.pbr.emissive_strength != vec3(0.f)
+                      : m.emission != vec3(0.f);
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
     if (!m.double_sided) f.single_sided = true;
     if (m.noise.enabled) f.noise = true;

@@ -59,6 +59,7 @@ struct SceneFeatures {
   // shown: camera rays that miss see it (no background colour asked for).
   bool environment = false;
   bool environment_shown = false;
+  bool emission = false;  // some material emits light
 };
 
 // A light with what shading needs at every hit computed once.

@@ -287,8 +287,9 @@ struct WhittedIntegrator {
   // BRDF sample (pbr_sampling.h). The BRDF sample's ray sees the
   // environment if it leaves the scene; from a glossy or coat lobe it goes
   // on (radiance at depth + 1, up to RenderOptions::bounces), from the
-  // diffuse lobe it ends there (no diffuse interreflection: the `direct`
-  // light transport). Random numbers: sample_random(seed, depth, 0..4).
+  // diffuse lobe it ends there, giving only the light of an emitting
+  // surface it hits (no diffuse interreflection: the `direct` light
+  // transport). Random numbers: sample_random(seed, depth, 0..4).
   // The occlusion texture is not applied: the environment's visibility is
   // traced.
   vec3 environment_light(const SurfacePoint& sp, const PbrPoint& point, vec3 v, int depth, uint32_t seed) const {
@@ -321,9 +322,23 @@ struct WhittedIntegrator {
       float coverage;
       return c + bs.weight * radiance(r, depth + 1, &coverage, outside_index, hash_bits(seed + 2u), bs.pdf);
     }
+    if (prepared.features.emission) {  // an emitting surface the path ends at gives its light
+      Hit h;
+      SurfacePoint hit;
+      vec4 k(0.f);
+      if (closest(r, &h, &hit, &k)) return c + bs.weight * emitted(hit);
+    }
     const vec3 through = way_through(r);
     if (through != vec3(0.f)) c += bs.weight * through * miss(r, depth + 1, bs.pdf);
     return c;
+  }
+
+  // The radiance a surface emits at a hit (its material's emission).
+  vec3 emitted(const SurfacePoint& sp) const {
+    const Material& m = prepared.materials[sp.material];
+    if (m.model != Material::Model::metallic_roughness) return m.emission;
+    const vec3 e = m.pbr.emissive * m.pbr.emissive_strength;
+    return e == vec3(0.f) ? e : e * vec3(slot_texel(prepared, m.pbr.emissive_texture, sp));
   }
 
   // A metallic-roughness hit: emission, the ambient light on the diffuse
