@@ -127,6 +127,18 @@ TEST(EnvironmentShIrradiance, LinearMapMatchesQuadratureAndClosedForm) {
   }
 }
 
+// A quadratic map lies in bands 0 to 2, where SH2 irradiance is exact too
+// (this one checks the band-2 factor A2 = pi / 4).
+TEST(EnvironmentShIrradiance, QuadraticMapMatchesQuadrature) {
+  const EnvironmentMap env =
+      map_of(256, 128, [](vec3 d) { return vec3(3.f * d.y * d.y, 1.f + d.x * d.z, 0.5f + d.x * d.x - d.z * d.y); });
+  const EnvironmentIrradiance e = environment_irradiance(env);
+  for (uint32_t k = 0; k < 8; ++k) {
+    const vec3 n = random_direction(150 + k);
+    expect_near_rel(irradiance(e, n), quadrature_irradiance(env, n), 2e-3, 2e-3);
+  }
+}
+
 // Rotation turns the lighting with the map (a normal turned by R_y(rotation)
 // sees what the unrotated map shows the unturned normal), intensity scales it.
 TEST(EnvironmentShIrradiance, RotationAndIntensityAreHonoured) {
@@ -149,6 +161,17 @@ TEST(EnvironmentShIrradiance, RotationAndIntensityAreHonoured) {
   const dvec3 quad = quadrature_irradiance(turned_map, towards, 2);
   EXPECT_NEAR(irradiance(turned, towards).x, quad.x, 0.02 * quad.x);  // SH2 of a non-polynomial map
   EXPECT_GT(irradiance(turned, towards).x, 1.5f * irradiance(turned, -towards).x);
+}
+
+// The default studio (environment_map.h) is scaled so that the exact E(+Y)
+// of its nearest-texel map is pi studio_up_radiance. Its softboxes are not
+// low-order: SH2 misses a little of it (ringing), within 3 %.
+TEST(EnvironmentShIrradiance, StudioUpIrradianceWithinTheSh2Error) {
+  const EnvironmentMap env = studio_environment();
+  const double sh = irradiance(environment_irradiance(env), vec3(0, 1, 0)).x;
+  EXPECT_NEAR(quadrature_irradiance(env, vec3(0, 1, 0)).x, dpi * studio_up_radiance, 1e-3 * dpi);
+  EXPECT_NEAR(sh, dpi * studio_up_radiance, 0.03 * dpi * studio_up_radiance);
+  EXPECT_LT(sh, dpi * studio_up_radiance);  // the ringing's sign for this map
 }
 
 TEST(PrefilteredEnvironment, LevelsAndTheirSizes) {
