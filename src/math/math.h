@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -24,6 +25,9 @@ inline constexpr float pi = std::numbers::pi_v<float>;
 inline constexpr float infinity = std::numeric_limits<float>::infinity();
 // Unit roundoff of float: half the distance from 1 to the next float.
 inline constexpr float machine_epsilon = std::numeric_limits<float>::epsilon() * 0.5f;
+
+// The largest of a colour's or vector's three components.
+inline float max_component(vec3 c) { return std::max(std::max(c.x, c.y), c.z); }
 
 inline float radians(float degrees) { return degrees * (pi / 180.0f); }
 

@@ -7,8 +7,6 @@
 namespace rayform {
 namespace {
 
-float max3(vec3 c) { return std::max(std::max(c.x, c.y), c.z); }
-
 // (1 - cos)^5, cos clamped to [0, 1].
 float schlick_weight(float cos_theta) {
   float m = std::clamp(1.f - cos_theta, 0.f, 1.f);
@@ -159,12 +157,13 @@ const Table2D& sheen_albedo_table() {
   return table;
 }
 
-// The sheen's scaling of the layers below it seen at n.v (1 - max3(sheen) E).
+// The sheen's scaling of the layers below it seen at n.v (1 - max_component(sheen) E).
 float sheen_scaling(const PbrSurface& s, float n_dot_x) {
-  return std::clamp(1.f - max3(s.sheen_color) * sheen_directional_albedo(n_dot_x, s.sheen_roughness), 0.f, 1.f);
+  return std::clamp(1.f - max_component(s.sheen_color) * sheen_directional_albedo(n_dot_x, s.sheen_roughness), 0.f,
+                    1.f);
 }
 
-bool has_sheen(const PbrSurface& s) { return max3(s.sheen_color) > 0.f; }
+bool has_sheen(const PbrSurface& s) { return max_component(s.sheen_color) > 0.f; }
 
 // Fc at |n_c.v| (the extension's fresnel_coat takes abs(VdotNc)).
 float coat_fresnel(float coat_n_dot_v) { return coat_f0 + (1.f - coat_f0) * schlick_weight(std::abs(coat_n_dot_v)); }
@@ -229,8 +228,8 @@ vec3 pbr_reflection(const PbrSurface& s, vec3 n, vec3 v, vec3 l) {
   float alpha = ggx_alpha(s.roughness);
   float specular_lobe = ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
   vec3 f_dielectric_fresnel = fresnel_schlick(dielectric_f0(s), vec3(s.specular), v_dot_h);
-  vec3 f_dielectric =
-      f_dielectric_fresnel * specular_lobe + (1.f - max3(f_dielectric_fresnel)) * (1.f - s.transmission) * s.base / pi;
+  vec3 f_dielectric = f_dielectric_fresnel * specular_lobe +
+                      (1.f - max_component(f_dielectric_fresnel)) * (1.f - s.transmission) * s.base / pi;
   vec3 f_metal = fresnel_schlick(s.base, vec3(1.f), v_dot_h) * specular_lobe;
   vec3 f = glm::mix(f_dielectric, f_metal, s.metallic);
 
@@ -281,7 +280,7 @@ vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v) {
 vec3 pbr_transmission_weight(const PbrSurface& s, float n_dot_v, float coat_n_dot_v) {
   if (s.transmission <= 0.f || s.metallic >= 1.f) return vec3(0.f);
   n_dot_v = std::abs(n_dot_v);
-  float reflected = max3(fresnel_schlick(dielectric_f0(s), vec3(s.specular), n_dot_v));
+  float reflected = max_component(fresnel_schlick(dielectric_f0(s), vec3(s.specular), n_dot_v));
   vec3 weight = s.transmission * (1.f - s.metallic) * (1.f - reflected) * s.base;
   if (has_sheen(s)) weight *= sheen_scaling(s, n_dot_v);
   if (s.clearcoat > 0.f) weight *= 1.f - s.clearcoat * coat_fresnel(coat_n_dot_v);

@@ -8,14 +8,14 @@
 // The layers, from the bottom up (f is the BRDF; every Fresnel term is
 // Schlick's):
 // - dielectric: F_d = Schlick(dielectric_f0, specular, |v.h|),
-//   f_dielectric = F_d D V + (1 - max3(F_d)) (1 - transmission) base / pi
+//   f_dielectric = F_d D V + (1 - max_component(F_d)) (1 - transmission) base / pi
 //   (KHR_materials_specular's fresnel_mix: the diffuse keeps what the
 //   strongest channel of the specular leaves; the transmitted share of the
 //   diffuse base is not reflected);
 // - metal: f_metal = Schlick(base, 1, |v.h|) D V;
 // - f_base = mix(f_dielectric, f_metal, metallic);
 // - sheen (KHR_materials_sheen): f = sheen_color D_charlie V_charlie +
-//   f_base min(1 - max3(sheen_color) E_sheen(n.v), 1 - max3(sheen_color)
+//   f_base min(1 - max_component(sheen_color) E_sheen(n.v), 1 - max_component(sheen_color)
 //   E_sheen(n.l)), E_sheen the sheen lobe's directional albedo (the
 //   extension's albedo scaling, symmetric in v and l);
 // - clearcoat (KHR_materials_clearcoat): with Fc = Schlick(0.04, 1, n_c.v)
@@ -103,7 +103,7 @@ vec3 pbr_reflection(const PbrSurface& s, vec3 n, vec3 v, vec3 l);
 // n_dot_v (its absolute value used): the integral over l of their f cos,
 // the weight of one mirror-direction ray that stands in for the specular
 // reflection of the surroundings (1 sample, deterministic). It is
-// mix(F0_d A + F90_d B, base A + B, metallic) (1 - max3(sheen_color)
+// mix(F0_d A + F90_d B, base A + B, metallic) (1 - max_component(sheen_color)
 // E_sheen(n.v)) (1 - clearcoat Fc) + clearcoat Fc (A_c + B_c) with the
 // split-sum terms above; the sheen lobe (broad, grazing, like the diffuse)
 // is not in it. The coat is taken as seen at coat_n_dot_v = n_c.v, which

@@ -6,7 +6,6 @@
 namespace rayform {
 namespace {
 
-float max3(vec3 c) { return std::max(std::max(c.x, c.y), c.z); }
 float mean3(vec3 c) { return (c.x + c.y + c.z) * (1.f / 3.f); }
 
 // The coat's Fresnel at normal incidence: KHR_materials_clearcoat's fixed
@@ -140,15 +139,15 @@ PbrLobeProbabilities pbr_lobe_probabilities(const PbrSurface& s, vec3 n, vec3 v)
       p.coat = coat_weight * (ab.x + ab.y);
     }
   }
-  const float sheen_e = max3(s.sheen_color) > 0.f ? sheen_directional_albedo(n_dot_v, s.sheen_roughness) : 0.f;
-  const float below = (1.f - coat_weight) * std::clamp(1.f - max3(s.sheen_color) * sheen_e, 0.f, 1.f);
+  const float sheen_e = max_component(s.sheen_color) > 0.f ? sheen_directional_albedo(n_dot_v, s.sheen_roughness) : 0.f;
+  const float below = (1.f - coat_weight) * std::clamp(1.f - max_component(s.sheen_color) * sheen_e, 0.f, 1.f);
 
   const vec3 f0 = dielectric_f0(s);
   const vec2 ab = ggx_split_sum(n_dot_v, s.roughness);
   const vec3 specular = glm::mix(f0 * ab.x + vec3(s.specular * ab.y), s.base * ab.x + vec3(ab.y), s.metallic);
   p.specular = mean3(specular) * below;
 
-  const float fresnel_v = max3(fresnel_schlick(f0, vec3(s.specular), n_dot_v));
+  const float fresnel_v = max_component(fresnel_schlick(f0, vec3(s.specular), n_dot_v));
   const vec3 diffuse = (1.f - s.metallic) * (1.f - s.transmission) * (1.f - fresnel_v) * s.base;
   p.diffuse = mean3(diffuse) * below + mean3(s.sheen_color) * sheen_e * (1.f - coat_weight);
 

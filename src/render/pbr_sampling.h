@@ -85,7 +85,7 @@ inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? c
 // or transmitted towards v). Each is proportional to an approximate albedo of
 // its lobe, the mean over RGB of:
 // - diffuse: the dielectric's diffuse base (1 - metallic) (1 - transmission)
-//   base (1 - max3(F_d(n.v))) plus the sheen's sheen_color E_sheen(n.v) (the
+//   base (1 - max_component(F_d(n.v))) plus the sheen's sheen_color E_sheen(n.v) (the
 //   sheen lobe, broad and grazing, is drawn with the diffuse's cosine
 //   distribution), both under the sheen scaling and the coat's (1 - clearcoat Fc);
 // - specular: the GGX lobe's split-sum albedo, mix(F0_d A + F90_d B, base A +

@@ -83,12 +83,41 @@ void check_cube_map_faces(const PreparedScene& p) {
     }
 }
 
+// The Scene's environment, decoded with its sampling distribution and its
+// noise-free approximations (features.environment), for scenes with
+// metallic-roughness materials.
+void prepare_environment(PreparedScene& p, const PrepareOptions& options) {
+  const Scene& scene = *p.scene;
+  SceneFeatures& f = p.features;
+  const Environment& env = scene.background.environment;
+  if (env.source == Environment::Source::none) return;
+  f.environment = true;
+  f.environment_shown = !scene.background.color_shown;
+  const float rotation = radians(env.rotation_deg);
+  if (env.source == Environment::Source::studio) {
+    p.environment = studio_environment();
+    p.environment.intensity = env.intensity;
+    p.environment.rotation = rotation;
+  } else {
+    p.environment = environment_from_image(read_image(env.path, DecodeOptions{options.limits.texture_texels}),
+                                           env.intensity, rotation);
+  }
+  p.environment_irradiance = environment_irradiance(p.environment);
+  p.prefiltered_environment = prefilter_environment(p.environment);
+}
+
 }  // namespace
 
 size_t PreparedScene::memory_bytes() const {
   size_t bytes = instances.capacity() * sizeof(Instance) + top.memory_bytes();
   for (const MeshAccel& m : meshes) bytes += m.memory_bytes();
   for (const std::vector<vec4>& t : corner_tangents) bytes += t.capacity() * sizeof(vec4);
+  auto map_bytes = [](const EnvironmentMap& m) {
+    return (m.rgb.capacity() + m.texel_weight.capacity() + m.row_cdf.capacity() + m.column_cdf.capacity()) *
+           sizeof(float);
+  };
+  bytes += map_bytes(environment);
+  for (const EnvironmentMap& level : prefiltered_environment.levels) bytes += map_bytes(level);
   for (const TextureImage& t : textures) bytes += t.memory_bytes();
   for (const TextureImage& t : cube_map) bytes += t.memory_bytes();
   return bytes;
@@ -198,9 +227,8 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       if (m.pbr.transmission > 0.f || m.pbr.transmission_texture.used()) m.double_sided = true;
     }
     if (m.specular != vec3(0.f)) f.specular = true;
-    f.emission |= m.model == Material::Model::metallic_roughness
-                      ? m.pbr.emissive * m.pbr.emissive_strength != vec3(0.f)
-                      : m.emission != vec3(0.f);
+    f.emission |= m.model == Material::Model::metallic_roughness ? m.pbr.emissive * m.pbr.emissive_strength != vec3(0.f)
+                                                                 : m.emission != vec3(0.f);
     if (m.alpha_cutoff >= 0.f) f.alpha_cutout = true;
     if (!m.double_sided) f.single_sided = true;
     if (m.noise.enabled) f.noise = true;
@@ -227,20 +255,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     }
   }
   generate_tangents(p);
-  const Environment& env = scene.background.environment;
-  if (f.pbr && env.source != Environment::Source::none) {
-    f.environment = true;
-    f.environment_shown = !scene.background.color_shown;
-    const float rotation = radians(env.rotation_deg);
-    if (env.source == Environment::Source::studio) {
-      p.environment = studio_environment();
-      p.environment.intensity = env.intensity;
-      p.environment.rotation = rotation;
-    } else {
-      p.environment = environment_from_image(read_image(env.path, DecodeOptions{options.limits.texture_texels}),
-                                             env.intensity, rotation);
-    }
-  }
+  if (f.pbr) prepare_environment(p, options);
   if (f.pbr) {  // the BRDF's tables, made once before the render's threads need them
     ggx_split_sum(1.f, 1.f);
     if (sheen) sheen_directional_albedo(1.f, 1.f);

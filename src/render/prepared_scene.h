@@ -6,6 +6,7 @@
 
 #include "rayform/accel/bvh.h"
 #include "rayform/accel/mesh_accel.h"
+#include "rayform/render/environment_filter.h"
 #include "rayform/render/environment_map.h"
 #include "rayform/render/mesh_accel_cache.h"
 #include "rayform/render/texture_sampler.h"
@@ -100,7 +101,11 @@ struct PreparedScene {
   std::vector<Material> materials;     // the Scene's, then one default material
   std::vector<TextureImage> cube_map;  // six faces, or empty
   EnvironmentMap environment;          // features.environment: the Scene's, with its sampling distribution
-  std::vector<PreparedLight> lights;   // the Scene's, in order
+  // Its noise-free approximations (the deterministic first picture): the
+  // irradiance's spherical harmonics and the map blurred by roughness.
+  EnvironmentIrradiance environment_irradiance;
+  PrefilteredEnvironment prefiltered_environment;
+  std::vector<PreparedLight> lights;  // the Scene's, in order
   SceneFeatures features;
   Bounds3 bounds;  // of the bounded instances, world space
 

@@ -13,6 +13,7 @@
 #include "rayform/math/hash.h"
 #include "rayform/math/perlin_noise.h"
 #include "rayform/render/cube_map.h"
+#include "rayform/render/environment_filter.h"
 #include "rayform/render/environment_map.h"
 #include "rayform/render/pbr_sampling.h"
 #include "rayform/render/prepared_scene.h"
@@ -47,6 +48,16 @@ inline uint32_t ray_seed(const Ray& r) {
 // it, and a ray leaving a refractive object passes into it.
 inline constexpr float outside_index = 1.f;
 
+// How a ray that leaves the scene sees the environment (metallic-roughness
+// shading): brdf_pdf > 0: the ray was drawn from a BRDF with that pdf, and
+// the environment is weighted against its own samples (multiple importance
+// sampling); blur > 0: blurred to that perceptual roughness (the reflections
+// of the deterministic first picture).
+struct EnvironmentLookup {
+  float brdf_pdf = 0.f;
+  float blur = 0.f;
+};
+
 // Compile-time switches of a render path. The generic path has all of them
 // on; a specialised path turns off what the prepared scene does not use, so
 // its per-ray work skips those tests. Every switch only removes work whose
@@ -68,22 +79,30 @@ struct WhittedIntegrator {
                                                                 })
                            ? HitPoint::point
                            : HitPoint::none;
+  // Whether metallic-roughness shading samples the environment's light
+  // (unbiased, converging with the samples a pixel: more than one, adaptive,
+  // or random sampling), or approximates it without noise (one sample at the
+  // pixel's centre: the deterministic first picture).
+  bool samples_environment = options.spp > 1 ||
+                             options.target_error.has_value() || options.sampler == PixelSampler::random;
   // Shadow rays ask for the closest hit (some material's back faces cast no
   // shadow, Material::back_faces_cast_shadows) rather than any hit.
   bool closest_shadows = prepared.features.back_face_shadow_gaps;
 
   // What a ray that leaves the scene sees: the environment (for a camera
   // ray, depth 0, only where it is shown), the cube map or the background
-  // colour. `brdf_pdf` > 0: the ray was sampled by a BRDF with that pdf, and
-  // the environment is weighted by multiple importance sampling against the
-  // environment's own samples (shade_pbr).
-  vec3 miss(const Ray& ray, int depth = 0, float brdf_pdf = 0.f) const {
+  // colour; `lookup` says how it sees the environment.
+  vec3 miss(const Ray& ray, int depth = 0, EnvironmentLookup lookup = {}) const {
     if (prepared.features.environment && (depth > 0 || prepared.features.environment_shown)) {
-      // Seen directly: interpolated. Weighed against the environment's
-      // samples: the texel those samples carry (the same integrand).
-      if (!(brdf_pdf > 0.f)) return environment_radiance_bilinear(prepared.environment, ray.direction);
-      return environment_radiance(prepared.environment, ray.direction) *
-             power_heuristic(brdf_pdf, environment_pdf(prepared.environment, ray.direction));
+      const EnvironmentMap& env = prepared.environment;
+      // Weighed against the environment's samples: the texel those samples
+      // carry (the same integrand). Seen directly: interpolated.
+      if (lookup.brdf_pdf > 0.f)
+        return environment_radiance(env, ray.direction) *
+               power_heuristic(lookup.brdf_pdf, environment_pdf(env, ray.direction));
+      if (lookup.blur > 0.f)
+        return prefiltered_radiance(prepared.prefiltered_environment, env, ray.direction, lookup.blur);
+      return environment_radiance_bilinear(env, ray.direction);
     }
     return prepared.features.cube_map ? sample_cube_map(prepared.cube_map, ray.direction) : scene.background.color;
   }
@@ -159,21 +178,21 @@ struct WhittedIntegrator {
   // (camera rays: outside_index), and the fraction of it that surfaces
   // cover (*coverage: 1 on a hit, 0 on a miss, between behind blended
   // surfaces; for AlphaMode).
-  // `seed` and `brdf_pdf` matter to metallic-roughness shading under an
+  // `seed` and `lookup` matter to metallic-roughness shading under an
   // environment only: the random numbers of a secondary ray (camera rays
-  // take theirs from the ray itself, ray_seed), and the pdf it was sampled
-  // with (miss).
+  // take theirs from the ray itself, ray_seed), and how it sees the
+  // environment when it leaves the scene (miss).
   vec3 radiance(const Ray& ray, int depth, float* coverage, float medium = outside_index, uint32_t seed = 0,
-                float brdf_pdf = 0.f) const {
+                EnvironmentLookup lookup = {}) const {
     if constexpr (shades_pbr)
       if (prepared.features.blend || prepared.features.transmission)
-        return radiance_layers(ray, depth, coverage, seed, brdf_pdf);
+        return radiance_layers(ray, depth, coverage, seed, lookup);
     Hit h;
     SurfacePoint sp;
     vec4 k(0.f);
     const bool hit = closest(ray, &h, &sp, &k);
     *coverage = hit ? 1.f : 0.f;
-    if (!hit) return miss(ray, depth, brdf_pdf);
+    if (!hit) return miss(ray, depth, lookup);
     return shade(ray, sp, vec3(k), depth, medium, seed);
   }
 
@@ -222,7 +241,7 @@ struct WhittedIntegrator {
   // materials: a blended hit of alpha a adds a times its colour and lets
   // 1 - a of the rest of the ray through (in ray order); a hit seen from
   // inside a volume is attenuated over the distance the ray travelled in it.
-  vec3 radiance_layers(Ray ray, int depth, float* coverage, uint32_t seed, float brdf_pdf) const {
+  vec3 radiance_layers(Ray ray, int depth, float* coverage, uint32_t seed, EnvironmentLookup lookup) const {
     vec3 sum(0.f);
     float through = 1.f;  // the share of the ray not yet covered
     for (;;) {
@@ -231,7 +250,7 @@ struct WhittedIntegrator {
       vec4 k(0.f);
       if (!closest(ray, &h, &sp, &k)) {
         *coverage = 1.f - through;
-        return sum + through * miss(ray, depth, brdf_pdf);
+        return sum + through * miss(ray, depth, lookup);
       }
       const Material& m = prepared.materials[sp.material];
       vec3 c = shade(ray, sp, vec3(k), depth, outside_index, seed);
@@ -255,8 +274,7 @@ struct WhittedIntegrator {
   // blending the way is followed hit by hit (closest), so that light passes
   // through the holes of a MASK texture.
   vec3 light_through(const SurfacePoint& sp, const Light& l, const LightSample& ls) const {
-    if (!prepared.features.blend && !prepared.features.alpha_cutout)
-      return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
+    if (!prepared.features.blend && !prepared.features.alpha_cutout) return blocked(sp, l, ls) ? vec3(0.f) : vec3(1.f);
     return way_through(l.kind == Light::Kind::directional
                            ? spawn_ray(sp.position, sp.position_error, sp.geometric_normal, ls.to_light)
                            : spawn_ray_to(sp.position, sp.position_error, sp.geometric_normal, l.position));
@@ -302,8 +320,7 @@ struct WhittedIntegrator {
     if (es.pdf > 0.f) {
       const vec3 f = pbr_reflection(s, n, v, es.direction);
       if (f != vec3(0.f) && glm::dot(es.direction, sp.geometric_normal) > 0.f) {
-        const vec3 through =
-            way_through(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, es.direction));
+        const vec3 through = way_through(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, es.direction));
         if (through != vec3(0.f))
           c += f * es.radiance * through * (power_heuristic(es.pdf, pbr_pdf(s, n, v, es.direction)) / es.pdf);
       }
@@ -320,7 +337,7 @@ struct WhittedIntegrator {
     const Ray r = spawn_ray(sp.position, sp.position_error, sp.geometric_normal, bs.direction);
     if (!bs.diffuse && depth < options.bounces) {
       float coverage;
-      return c + bs.weight * radiance(r, depth + 1, &coverage, outside_index, hash_bits(seed + 2u), bs.pdf);
+      return c + bs.weight * radiance(r, depth + 1, &coverage, outside_index, hash_bits(seed + 2u), {bs.pdf, 0.f});
     }
     if (prepared.features.emission) {  // an emitting surface the path ends at gives its light
       Hit h;
@@ -329,7 +346,7 @@ struct WhittedIntegrator {
       if (closest(r, &h, &hit, &k)) return c + bs.weight * emitted(hit);
     }
     const vec3 through = way_through(r);
-    if (through != vec3(0.f)) c += bs.weight * through * miss(r, depth + 1, bs.pdf);
+    if (through != vec3(0.f)) c += bs.weight * through * miss(r, depth + 1, {bs.pdf, 0.f});
     return c;
   }
 
@@ -348,8 +365,7 @@ struct WhittedIntegrator {
   // weighted by the transmission (straight through a thin wall, bent by the
   // index into and out of a volume). The occlusion texture scales the
   // indirect light: the ambient term and the reflection ray.
-  vec3 shade_pbr(const Ray& ray, const SurfacePoint& sp, const Material& m, vec3 base, int depth,
-                 uint32_t seed) const {
+  vec3 shade_pbr(const Ray& ray, const SurfacePoint& sp, const Material& m, vec3 base, int depth, uint32_t seed) const {
     const vec3 d = glm::normalize(ray.direction), v = -d;
     const bool flipped = m.two_sided_lighting && glm::dot(ray.direction, sp.geometric_normal) > 0.f;
     const PbrPoint point = pbr_point(prepared, m.pbr, sp, base, d, flipped);
@@ -368,19 +384,30 @@ struct WhittedIntegrator {
       }
       c += f * (pi * ls.color) * through;
     }
-    if (prepared.features.environment) c += environment_light(sp, point, v, depth, seed);
+    const float n_dot_v = std::max(glm::dot(n, v), 0.f), coat_n_dot_v = glm::dot(s.clearcoat_normal, v);
+    const bool sampled = prepared.features.environment && samples_environment;
+    if (sampled) {
+      c += environment_light(sp, point, v, depth, seed);
+    } else if (prepared.features.environment) {
+      // The first picture's environment light, without noise: the diffuse
+      // base under the unshadowed irradiance, darkened by the occlusion
+      // texture; the specular layers by the mirror ray below.
+      const float diffuse = (1.f - s.metallic) * (1.f - s.transmission) *
+                            (1.f - max_component(fresnel_schlick(dielectric_f0(s), vec3(s.specular), n_dot_v)));
+      c += s.base * (diffuse * point.occlusion / pi) * irradiance(prepared.environment_irradiance, n);
+    }
     if (depth >= options.bounces) return c;
-    auto trace_dir = [&](vec3 w) {
+    // A ray from the hit; when it leaves the scene it sees the environment
+    // blurred to `blur` (the mirror ray of a rough surface).
+    auto trace_dir = [&](vec3 w, float blur) {
       float coverage;
       return radiance(spawn_ray(sp.position, sp.position_error, sp.geometric_normal, w), depth + 1, &coverage,
-                      outside_index, hash_bits(seed + 1u));
+                      outside_index, hash_bits(seed + 1u), EnvironmentLookup{0.f, blur});
     };
-    const float n_dot_v = std::max(glm::dot(n, v), 0.f), coat_n_dot_v = glm::dot(s.clearcoat_normal, v);
     const vec3 reflected = d + 2.f * n_dot_v * n;
-    // Under an environment the reflection is sampled (environment_light);
-    // without one, one mirror ray stands in for it.
-    const vec3 specular =
-        prepared.features.environment ? vec3(0.f) : pbr_specular_albedo(s, n_dot_v, coat_n_dot_v) * point.occlusion;
+    // With the environment sampled the reflection is too (environment_light);
+    // otherwise one mirror ray stands in for it.
+    const vec3 specular = sampled ? vec3(0.f) : pbr_specular_albedo(s, n_dot_v, coat_n_dot_v) * point.occlusion;
     vec3 reflection_weight = specular;
     if (s.transmission > 0.f && s.metallic < 1.f) {
       const vec3 weight = pbr_transmission_weight(s, n_dot_v, coat_n_dot_v);
@@ -393,11 +420,11 @@ struct WhittedIntegrator {
           if (sin2_t < 1.f) refracted = eta * d + (eta * n_dot_v - std::sqrt(1.f - sin2_t)) * n;
           else refracted = vec3(0.f);  // total internal reflection: the weight goes to the reflection
         }
-        if (refracted != vec3(0.f)) c += weight * trace_dir(refracted);
+        if (refracted != vec3(0.f)) c += weight * trace_dir(refracted, 0.f);
         else reflection_weight += weight;
       }
     }
-    if (reflection_weight != vec3(0.f)) c += reflection_weight * trace_dir(reflected);
+    if (reflection_weight != vec3(0.f)) c += reflection_weight * trace_dir(reflected, s.roughness);
     return c;
   }
 
