@@ -4,7 +4,7 @@
 #include "rayform/importers/obj/mtl_library.h"
 #include "rayform/importers/obj/obj_bad_index.h"
 #include "rayform/importers/obj/obj_parallel_parse.h"
-#include "rayform/importers/obj/obj_pbr_material.h"
+#include "rayform/importers/obj/obj_materials.h"
 #include "rayform/importers/obj/obj_side_files.h"
 #include "rayform/importers/obj/obj_smooth_normals.h"
 #include "rayform/importers/obj/obj_vertex_weld.h"
@@ -34,18 +34,9 @@ namespace {
 
 using obj::BadIndex;
 using obj::find_bad_index;
-using obj::is_pbr_material;
-using obj::mtl_keywords;
 using obj::MtlLibrary;
-using obj::pbr_material;
 using obj::PreloadedMaterials;
-using obj::resolve_beside;
-using obj::Resolved;
-using obj::split_mtllib;
-
-// Grey of the material given to faces without a (known) material: light
-// enough to read, dark enough that a head-on light does not clip it.
-constexpr float default_grey = 0.8f;
+using obj::trim;
 
 // Smaller files are parsed in one piece: threads do not pay there.
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
@@ -61,13 +52,6 @@ constexpr size_t chunks_per_thread = 16;
 // 4 chunks (balance), and small enough to cost nothing per chunk.
 constexpr size_t shared_chunks_per_part = 32;
 
-std::string trim(std::string s) {
-  size_t b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  size_t e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
 class ObjReader {
  public:
   ObjReader(const std::string& path, const ObjReadOptions& options, std::vector<std::string>* warnings)
@@ -76,7 +60,7 @@ class ObjReader {
   Scene read() {
     file_ = FileBytes(path_, "OBJ file");
     text_ = file_.view();
-    load_material_libraries();
+    materials_.load_libraries(text_);
 
     ObjParse parsed = parse();
     const tinyobj::attrib_t& attrib = parsed.attrib;
@@ -147,7 +131,7 @@ class ObjReader {
     if (has_colors_)
       has_colors_ = std::any_of(attrib.colors.begin(), attrib.colors.end(), [](float c) { return c != 1.f; });
 
-    convert_materials();
+    materials_.convert();
 
     Node root;
     root.kind = Node::Kind::group;
@@ -187,7 +171,7 @@ class ObjReader {
   // same (see obj_parallel_parse.h) and pays, else in one piece.
   ObjParse parse() {
     ObjParse parsed;
-    MaterialReaderFactory readers = [&] { return std::make_unique<PreloadedMaterials>(lib_); };
+    MaterialReaderFactory readers = [&] { return std::make_unique<PreloadedMaterials>(materials_.library()); };
     const WorkShare* share = options_.share && options_.share->shared() ? options_.share : nullptr;
     size_t chunk = options_.parse_chunk_bytes;
     if (chunk == 0 && share) {
@@ -219,200 +203,6 @@ class ObjReader {
   int add_node(Node n) {
     scene_.nodes.push_back(std::move(n));
     return int(scene_.nodes.size()) - 1;
-  }
-
-  // ---- materials ---------------------------------------------------------
-
-  // The `mtllib` lines, found by searching the text for the word (not line by
-  // line: a mesh file is mostly vertices and faces).
-  void load_material_libraries() {
-    const std::string_view text(text_);
-    size_t line_no = 1, counted_to = 0;  // line_no: the line at offset counted_to
-    std::set<std::string> loaded;
-    for (size_t at = text.find("mtllib"); at != std::string_view::npos; at = text.find("mtllib", at + 6)) {
-      const size_t newline_before = text.rfind('\n', at);
-      const size_t line_start = newline_before == std::string_view::npos ? 0 : newline_before + 1;
-      const size_t b = at - line_start;  // where the word starts in its line
-      if (text.substr(line_start, b).find_first_not_of(" \t") != std::string_view::npos) continue;
-      const size_t line_end = std::min(text.find('\n', at), text.size());
-      const std::string line(text.substr(line_start, line_end - line_start));
-      line_no += size_t(std::count(text.begin() + counted_to, text.begin() + line_start, '\n'));
-      counted_to = line_start;
-      if (b + 6 < line.size() && line[b + 6] != ' ' && line[b + 6] != '\t') continue;
-      std::string rest = trim(line.substr(b + 6));
-      std::string where = path_ + ":" + std::to_string(line_no);
-      if (rest.empty()) {
-        warn(where + ": mtllib names no file");
-        continue;
-      }
-      for (const std::string& name : split_mtllib(rest, dir_)) {
-        Resolved r = resolve_beside(dir_, name);
-        if (!r.found) {
-          warn(where + ": cannot find material library '" + name +
-               "'; its materials are replaced by the default material");
-          continue;
-        }
-        if (std::string problem = referenced_file_problem(path_, "mtllib", name, r.path, options_.access);
-            !problem.empty())
-          throw Error(where + ": " + problem);
-        if (r.by_name_only)
-          warn(where + ": material library '" + name + "' not found as written; using " + r.path.string());
-        std::error_code ec;
-        std::string key = fs::weakly_canonical(r.path, ec).string();
-        if (!loaded.insert(key).second) continue;
-        load_mtl(r.path);
-      }
-    }
-  }
-
-  void load_mtl(const fs::path& file) {
-    std::ifstream f(file, std::ios::binary);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    if (!f) {
-      warn(file.string() + ": cannot read material library");
-      return;
-    }
-    std::string text = ss.str();
-    std::map<std::string, std::set<std::string>> keywords = mtl_keywords(text);
-    std::istringstream in(text);
-    std::string w, e;
-    size_t first = lib_.materials.size();
-    tinyobj::LoadMtl(&lib_.names, &lib_.materials, &in, &w, &e);
-    for (size_t i = first; i < lib_.materials.size(); ++i) {
-      lib_.dirs.push_back(file.parent_path());
-      lib_.keywords.push_back(keywords[lib_.materials[i].name]);
-    }
-    std::istringstream wl(w + e);
-    std::string l;
-    while (std::getline(wl, l))
-      if (!trim(l).empty()) warn(file.string() + ": " + trim(l));
-  }
-
-  // The path of a material's texture file, resolved beside its .mtl; "" when
-  // it cannot be found (warned about).
-  std::string texture_path(const std::string& name, const fs::path& mtl_dir, const std::string& material,
-                           const char* slot) {
-    Resolved r = resolve_beside(mtl_dir, name);
-    if (!r.found) {
-      warn(path_ + ": material '" + material + "': cannot find " + slot + " texture '" + name + "' (looked in " +
-           mtl_dir.string() + "); the material has no " + slot + " texture");
-      return {};
-    }
-    if (std::string problem = referenced_file_problem(path_, slot, name, r.path, options_.access); !problem.empty())
-      throw Error(path_ + ": material '" + material + "': " + problem);
-    if (r.by_name_only)
-      warn(path_ + ": material '" + material + "': " + slot + " texture '" + name + "' not found as written; using " +
-           r.path.string());
-    return r.path.lexically_normal().string();
-  }
-
-  // A texture of a material: resolved beside its .mtl; missing = warning.
-  int texture(const std::string& name, const fs::path& mtl_dir, const std::string& material, const char* slot,
-              bool srgb, bool clamp) {
-    if (name.empty()) return invalid;
-    const std::string path = texture_path(name, mtl_dir, material, slot);
-    if (path.empty()) return invalid;
-    std::string key = path + (srgb ? "|srgb" : "|raw") + (clamp ? "|clamp" : "|repeat");
-    auto it = texture_cache_.find(key);
-    if (it != texture_cache_.end()) return it->second;
-    Texture t;
-    t.name = name;
-    t.path = path;
-    t.srgb = srgb;
-    t.lookup = Texture::Lookup::standard;
-    t.wrap_u = t.wrap_v = clamp ? Texture::Wrap::clamp : Texture::Wrap::repeat;
-    t.filter = Texture::Filter::linear;
-    scene_.textures.push_back(std::move(t));
-    int index = int(scene_.textures.size()) - 1;
-    texture_cache_[key] = index;
-    return index;
-  }
-
-  // How the PBR materials of the .mtl in `dir` find their textures.
-  obj::MtlTextures& pbr_textures(const fs::path& dir) {
-    pbr_textures_.resolve = [this, dir](const std::string& name, const char* slot) {
-      return texture_path(name, dir, current_material_, slot);
-    };
-    pbr_textures_.file_texture = [this, dir](const std::string& name, const char* slot, bool srgb, bool clamp) {
-      return texture(name, dir, current_material_, slot, srgb, clamp);
-    };
-    pbr_textures_.add = [this](Texture t) {
-      scene_.textures.push_back(std::move(t));
-      return int(scene_.textures.size()) - 1;
-    };
-    pbr_textures_.warn = [this](const std::string& w) { warn(path_ + ": " + w); };
-    return pbr_textures_;
-  }
-
-  void convert_materials() {
-    for (size_t i = 0; i < lib_.materials.size(); ++i) {
-      const tinyobj::material_t& tm = lib_.materials[i];
-      const fs::path& dir = lib_.dirs[i];
-      current_material_ = tm.name;
-      Material m;
-      m.name = tm.name;
-      m.texture_modulates = true;
-      m.double_sided = true;
-      m.two_sided_lighting = true;  // OBJ has no culling: both sides are lit alike
-      bool srgb = tm.diffuse_texopt.colorspace != "linear";
-      m.diffuse_texture = texture(tm.diffuse_texname, dir, tm.name, "map_Kd", srgb, tm.diffuse_texopt.clamp);
-      // Kd absent: with a map_Kd the texel is the colour (Kd = 1, as
-      // exporters that leave Kd out mean); without one, the default grey.
-      // (tinyobjloader would give 0.6 or black.)
-      if (lib_.has(i, "Kd")) m.diffuse = vec3(tm.diffuse[0], tm.diffuse[1], tm.diffuse[2]);
-      else m.diffuse = vec3(m.diffuse_texture != invalid ? 1.f : default_grey);
-      if (is_pbr_material(lib_.keywords[i])) {
-        scene_.materials.push_back(pbr_material(tm, lib_.keywords[i], m.diffuse, m.diffuse_texture, pbr_textures(dir)));
-        continue;
-      }
-      if (m.diffuse_texture != invalid) {
-        // map_Kd -s/-o: uv' = uv * s + o, the shader's transform with no rotation.
-        m.uv_transform.scale = vec2(tm.diffuse_texopt.scale[0], tm.diffuse_texopt.scale[1]);
-        m.uv_transform.offset = vec2(tm.diffuse_texopt.origin_offset[0], tm.diffuse_texopt.origin_offset[1]);
-      }
-      m.specular = vec3(tm.specular[0], tm.specular[1], tm.specular[2]);
-      m.shininess = tm.shininess;
-      // Ns 0 would make (L.R)^0 = 1: a constant "highlight" over the whole lit
-      // side. Exporters write Ns 0 for "no highlight" (Blender: roughness 1).
-      if (!(m.shininess > 0.f)) {
-        m.shininess = 0.f;
-        m.specular = vec3(0.f);
-      }
-      m.emission = vec3(tm.emission[0], tm.emission[1], tm.emission[2]);
-      m.bump_texture = texture(tm.bump_texname, dir, tm.name, "map_Bump", false, tm.bump_texopt.clamp);
-      if (tm.dissolve < 1.f)
-        warn(path_ + ": material '" + tm.name + "': transparency (d " + std::to_string(tm.dissolve) +
-             ") is not rendered; the material is opaque");
-      // Ka has no place in the course Phong model (ambient = scene ambient x K).
-      std::vector<std::string> unused;
-      if (!tm.ambient_texname.empty()) unused.push_back("map_Ka");
-      if (!tm.specular_texname.empty()) unused.push_back("map_Ks");
-      if (!tm.specular_highlight_texname.empty()) unused.push_back("map_Ns");
-      if (!tm.emissive_texname.empty()) unused.push_back("map_Ke");
-      if (!tm.alpha_texname.empty()) unused.push_back("map_d");
-      if (!tm.displacement_texname.empty()) unused.push_back("disp");
-      if (!tm.reflection_texname.empty()) unused.push_back("refl");
-      if (!unused.empty()) {
-        std::string list;
-        for (const std::string& u : unused) list += (list.empty() ? "" : ", ") + u;
-        warn(path_ + ": material '" + tm.name + "': " + list + " not used by the Phong shader; ignored");
-      }
-      scene_.materials.push_back(std::move(m));
-    }
-  }
-
-  int default_material() {
-    if (default_material_ == invalid) {
-      Material m;
-      m.name = "default";
-      m.diffuse = vec3(default_grey);
-      m.texture_modulates = true;
-      m.two_sided_lighting = true;
-      scene_.materials.push_back(m);
-      default_material_ = int(scene_.materials.size()) - 1;
-    }
-    return default_material_;
   }
 
   // ---- geometry ----------------------------------------------------------
@@ -526,7 +316,8 @@ class ObjReader {
     for (size_t t = 0; t < triangles; ++t) {
       const size_t f = face_of(t);
       int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
-      face_mats[t] = mid >= 0 && size_t(mid) < lib_.materials.size() ? mid : default_material();
+      face_mats[t] =
+          mid >= 0 && size_t(mid) < materials_.library().materials.size() ? mid : materials_.default_material();
     }
     if (mesh.indices.empty()) return invalid;
     bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
@@ -602,12 +393,9 @@ class ObjReader {
   fs::path dir_;
   FileBytes file_;
   std::string_view text_;  // file_'s bytes
-  MtlLibrary lib_;
   Scene scene_;
-  std::map<std::string, int> texture_cache_;
-  obj::MtlTextures pbr_textures_;  // the PBR materials' textures, packed ones included
-  std::string current_material_;   // the material being converted, for messages
-  int default_material_ = invalid;
+  // The file's materials, into scene_ (declared after it: it holds a reference).
+  obj::ObjMaterials materials_{path_, dir_, options_.access, scene_, [this](std::string w) { warn(std::move(w)); }};
   int mesh_node_material_ = invalid;
   bool has_colors_ = false;
   std::vector<uint8_t> normal_usable_;  // per written normal

@@ -27,4 +27,12 @@ Resolved resolve_beside(const std::filesystem::path& dir, const std::string& nam
 // each ".mtl".
 std::vector<std::string> split_mtllib(const std::string& rest, const std::filesystem::path& dir);
 
+// `s` without its leading and trailing blanks (spaces, tabs, line ends).
+inline std::string trim(const std::string& s) {
+  const size_t b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  const size_t e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
 }  // namespace rayform::obj
