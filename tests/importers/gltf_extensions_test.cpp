@@ -11,6 +11,7 @@
 #include "rayform/scene/node_walk.h"
 #include "rayform/scene/scene_stats.h"
 #include "test_importers.h"
+#include "test_glb.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -77,23 +78,7 @@ struct GltfDraft {
   std::vector<uint8_t> glb() const {
     json out = j;
     out["buffers"][0]["byteLength"] = bin.size();
-    std::string text = out.dump();
-    while (text.size() % 4) text += ' ';
-    std::vector<uint8_t> b = bin;
-    while (b.size() % 4) b.push_back(0);
-    std::vector<uint8_t> file = {'g', 'l', 'T', 'F'};
-    auto u32 = [&](uint32_t v) {
-      for (int k = 0; k < 4; ++k) file.push_back(uint8_t(v >> (8 * k)));
-    };
-    u32(2);
-    u32(uint32_t(12 + 8 + text.size() + 8 + b.size()));
-    u32(uint32_t(text.size()));
-    u32(0x4E4F534A);
-    file.insert(file.end(), text.begin(), text.end());
-    u32(uint32_t(b.size()));
-    u32(0x004E4942);
-    file.insert(file.end(), b.begin(), b.end());
-    return file;
+    return test::make_glb(out.dump(), bin);
   }
 };
 

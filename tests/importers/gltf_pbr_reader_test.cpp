@@ -7,6 +7,7 @@
 #include "rayform/importers/gltf/gltf_reader.h"
 #include "rayform/base/error.h"
 #include "test_importers.h"
+#include "test_glb.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -70,23 +71,7 @@ struct PbrDraft {
     out["scenes"] = json::array({{{"nodes", json::array({0})}}});
     out["scene"] = 0;
     out["buffers"][0]["byteLength"] = bin.size();
-    std::string text = out.dump();
-    while (text.size() % 4) text += ' ';
-    std::vector<uint8_t> b = bin;
-    while (b.size() % 4) b.push_back(0);
-    std::vector<uint8_t> file = {'g', 'l', 'T', 'F'};
-    auto u32 = [&](uint32_t v) {
-      for (int k = 0; k < 4; ++k) file.push_back(uint8_t(v >> (8 * k)));
-    };
-    u32(2);
-    u32(uint32_t(12 + 8 + text.size() + 8 + b.size()));
-    u32(uint32_t(text.size()));
-    u32(0x4E4F534A);
-    file.insert(file.end(), text.begin(), text.end());
-    u32(uint32_t(b.size()));
-    u32(0x004E4942);
-    file.insert(file.end(), b.begin(), b.end());
-    return file;
+    return test::make_glb(out.dump(), bin);
   }
 };
 

@@ -10,6 +10,7 @@
 #include "rayform/scene/scene_stats.h"
 #include "rayform/importers/scene_io.h"
 #include "test_importers.h"
+#include "test_glb.h"
 #include "test_paths.h"
 
 #include <gtest/gtest.h>
@@ -26,6 +27,7 @@ namespace fs = std::filesystem;
 
 using test::any_contains;
 using test::asset;
+using test::make_glb;
 
 // ---- building glTF files ----------------------------------------------------------
 
@@ -73,28 +75,6 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 std::string with_buffer(std::string j, const Bin& bin) {
   j = replace_all(j, "@N@", std::to_string(bin.bytes.size()));
   return replace_all(j, "@BUF@", data_uri(bin));
-}
-
-// A GLB container: JSON chunk (space padded) and, if given, a BIN chunk.
-std::vector<uint8_t> make_glb(std::string json, const std::vector<uint8_t>& bin) {
-  while (json.size() % 4) json += ' ';
-  std::vector<uint8_t> b = bin;
-  while (b.size() % 4) b.push_back(0);
-  auto u32 = [](std::vector<uint8_t>& out, uint32_t v) {
-    for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
-  };
-  std::vector<uint8_t> out = {'g', 'l', 'T', 'F'};
-  u32(out, 2);
-  u32(out, uint32_t(12 + 8 + json.size() + (b.empty() ? 0 : 8 + b.size())));
-  u32(out, uint32_t(json.size()));
-  u32(out, 0x4E4F534A);
-  out.insert(out.end(), json.begin(), json.end());
-  if (!b.empty()) {
-    u32(out, uint32_t(b.size()));
-    u32(out, 0x004E4942);
-    out.insert(out.end(), b.begin(), b.end());
-  }
-  return out;
 }
 
 // 2x2 RGBA PNG: red, green / blue, white with alpha 128.
