@@ -7,6 +7,7 @@
 #include "rayform/accel/mesh_build_refs.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -55,9 +56,17 @@ struct Bins {
 // Finds splits of ranges of a PrimRef array and partitions the array by them.
 class RangeSplitter {
  public:
-  // bins_per_axis in [2, max_bins]; traversal_cost >= 0.
-  RangeSplitter(std::vector<PrimRef>& refs, int bins_per_axis, float traversal_cost)
-      : refs_(refs), bins_per_axis_(bins_per_axis), traversal_cost_(traversal_cost) {}
+  // bins_per_axis in [2, max_bins]; traversal_cost >= 0. Ranges of at least
+  // parallel_threshold primitives are partitioned by parallel tasks (the same
+  // array and boxes as one task gives; tests set a smaller threshold).
+  RangeSplitter(std::vector<PrimRef>& refs, int bins_per_axis, float traversal_cost,
+                uint32_t parallel_threshold = default_parallel_threshold)
+      : refs_(refs),
+        bins_per_axis_(bins_per_axis),
+        traversal_cost_(traversal_cost),
+        parallel_threshold_(std::max(parallel_threshold, 1u)) {}
+
+  static constexpr uint32_t default_parallel_threshold = 1u << 15;
 
   // The best SAH split of r. Bins r's primitives, which partition(r, split)
   // then reads: nothing may reorder r in between.
@@ -81,7 +90,7 @@ class RangeSplitter {
     const f4 vlo = simd::loadu(clo), vscale = simd::loadu(scale);
     Bins bins;
     bins.clear(nb);
-    if (r.count() >= parallel_bin_threshold) {
+    if (r.count() >= parallel_threshold_) {
       bins = tbb::parallel_reduce(
           tbb::blocked_range<uint32_t>(r.begin, r.end, 1u << 13), bins,
           [&](const tbb::blocked_range<uint32_t>& br, Bins acc) {
@@ -137,11 +146,17 @@ class RangeSplitter {
     Range left, right;
     uint32_t mid = r.begin + s.left;
     if (s.axis >= 0 && mid != r.begin && mid != r.end) {
-      swap_misplaced(r, s);
       // The boxes as Hoare's partition accumulates them: [begin, mid) upwards,
       // [mid, end) downwards (which only matters where +0 and -0 tie).
-      for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
-      for (uint32_t i = mid; i < r.end; ++i) add_before(right, refs_[i]);
+      if (r.count() >= parallel_threshold_) {
+        swap_misplaced_parallel(r, s);
+        left = boxes_in_parallel(r.begin, mid, false);
+        right = boxes_in_parallel(mid, r.end, true);
+      } else {
+        swap_misplaced(r, s);
+        for (uint32_t i = r.begin; i < mid; ++i) add(left, refs_[i]);
+        for (uint32_t i = mid; i < r.end; ++i) add_before(right, refs_[i]);
+      }
     } else {
       // By count, at the median of the widest centroid axis when there is one.
       mid = r.begin + r.count() / 2;
@@ -168,7 +183,6 @@ class RangeSplitter {
   }
 
  private:
-  static constexpr uint32_t parallel_bin_threshold = 1u << 15;  // larger ranges are binned by parallel tasks
   // Beyond this depth, splits by count (each child at most half) keep the
   // tree within sah_depth_limit + 33 levels, which bounds the traversal stack.
   static constexpr int sah_depth_limit = 32;
@@ -176,6 +190,7 @@ class RangeSplitter {
   std::vector<PrimRef>& refs_;
   int bins_per_axis_;
   float traversal_cost_;
+  uint32_t parallel_threshold_;  // ranges at least this large are binned and partitioned by parallel tasks
 
   // Bins refs_[begin, end) by their doubled centroids, and records each one's
   // bins in it for partition.
@@ -227,6 +242,94 @@ class RangeSplitter {
       ir += k;
       if ((il == nl && a == mid) || (ir == nr && b == mid)) break;
     }
+  }
+
+  // swap_misplaced by parallel tasks, with the same result: the k-th
+  // misplaced primitive of [begin, mid) counted upwards swaps with the k-th
+  // misplaced one of [mid, end) counted downwards. Blocks count their
+  // misplaced primitives, then list their positions at their ranks, then the
+  // pairs swap (disjoint, so in any order).
+  void swap_misplaced_parallel(const Range& r, const Split& s) {
+    constexpr uint32_t block = 1u << 13;
+    const uint32_t mid = r.begin + s.left, pos = uint32_t(s.pos);
+    const int axis = s.axis;
+    const uint32_t left_blocks = (mid - r.begin + block - 1) / block, right_blocks = (r.end - mid + block - 1) / block;
+    // Block b < left_blocks: [r.begin + b block, ...) up to mid, scanned upwards;
+    // block left_blocks + j: (..., r.end - j block) down to mid, scanned downwards.
+    auto left_block = [&](uint32_t b) {
+      return std::pair{r.begin + b * block, std::min(mid, r.begin + (b + 1) * block)};
+    };
+    auto right_block = [&](uint32_t j) {
+      return std::pair{r.end - std::min(r.end - mid, (j + 1) * block), r.end - j * block};
+    };
+    auto misplaced_left = [&](uint32_t i) { return refs_[i].bin(axis) > pos; };
+    auto misplaced_right = [&](uint32_t i) { return refs_[i].bin(axis) <= pos; };
+    std::vector<uint32_t> first(left_blocks + right_blocks + 2, 0);  // per block: rank of its first misplaced one
+    tbb::parallel_for(uint32_t(0), left_blocks + right_blocks, [&](uint32_t b) {
+      uint32_t n = 0;
+      if (b < left_blocks) {
+        auto [lo, hi] = left_block(b);
+        for (uint32_t i = lo; i < hi; ++i) n += misplaced_left(i);
+      } else {
+        auto [lo, hi] = right_block(b - left_blocks);
+        for (uint32_t i = lo; i < hi; ++i) n += misplaced_right(i);
+      }
+      first[b + 1 + (b >= left_blocks)] = n;
+    });
+    // Exclusive sums: left blocks in first[0 .. left_blocks], right blocks
+    // after a second zero at first[left_blocks + 1].
+    for (uint32_t b = 0; b < left_blocks; ++b) first[b + 1] += first[b];
+    for (uint32_t j = 0; j < right_blocks; ++j) first[left_blocks + 2 + j] += first[left_blocks + 1 + j];
+    const uint32_t misplaced = first[left_blocks];
+    if (first[left_blocks + 1 + right_blocks] != misplaced) return swap_misplaced(r, s);  // not a split of r
+    std::vector<uint32_t> left_pos(misplaced), right_pos(misplaced);
+    tbb::parallel_for(uint32_t(0), left_blocks + right_blocks, [&](uint32_t b) {
+      if (b < left_blocks) {
+        auto [lo, hi] = left_block(b);
+        uint32_t k = first[b];
+        for (uint32_t i = lo; i < hi; ++i)
+          if (misplaced_left(i)) left_pos[k++] = i;
+      } else {
+        const uint32_t j = b - left_blocks;
+        auto [lo, hi] = right_block(j);
+        uint32_t k = first[left_blocks + 1 + j];
+        for (uint32_t i = hi; i > lo; --i)
+          if (misplaced_right(i - 1)) right_pos[k++] = i - 1;
+      }
+    });
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, misplaced, block), [&](const tbb::blocked_range<uint32_t>& br) {
+      for (uint32_t k = br.begin(); k < br.end(); ++k) std::swap(refs_[left_pos[k]], refs_[right_pos[k]]);
+    });
+  }
+
+  // The boxes of refs_[begin, end) by parallel tasks, equal to adding them
+  // in order one by one (add, or add_before where `before`): where bounds tie
+  // (+0 and -0), add keeps the last primitive's and add_before the first's.
+  // Each block of the range is boxed by one task; the blocks' boxes are then
+  // joined in order, which keeps the same one.
+  Range boxes_in_parallel(uint32_t begin, uint32_t end, bool before) const {
+    constexpr uint32_t block = 1u << 13;
+    const uint32_t blocks = (end - begin + block - 1) / block;
+    std::vector<Range> parts(blocks);
+    tbb::parallel_for(uint32_t(0), blocks, [&](uint32_t b) {
+      const uint32_t lo = begin + b * block, hi = std::min(end, lo + block);
+      Range& acc = parts[b];
+      if (before)
+        for (uint32_t i = lo; i < hi; ++i) add_before(acc, refs_[i]);
+      else
+        for (uint32_t i = lo; i < hi; ++i) add(acc, refs_[i]);
+    });
+    Range all;
+    for (const Range& part : parts) {
+      if (before) {
+        all.geom.expand_before(part.geom.lo, part.geom.hi);
+        all.cent.expand_before(part.cent.lo, part.cent.hi);
+      } else {
+        all.geom.expand(part.geom);
+        all.cent.expand(part.cent);
+      }
+    }
+    return all;
   }
 };
 
