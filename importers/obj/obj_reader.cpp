@@ -226,17 +226,28 @@ class ObjReader {
     };
     auto corner_uv = [&](const tinyobj::index_t& ix) { return uvs_ok ? ix.texcoord_index : -1; };
 
-    bool any_uv = false, any_normal = false, all_normals = true;
-    for (size_t f = 0; f < faces; ++f) {
-      if (s.mesh.num_face_vertices[f] != 3) continue;
-      for (int k = 0; k < 3; ++k) {
-        const tinyobj::index_t& ix = idx[face_start[f] + k];
-        any_uv |= corner_uv(ix) >= 0;
-        bool hn = corner_normal(ix) >= 0;
-        any_normal |= hn;
-        all_normals &= hn;
-      }
-    }
+    struct CornerKinds {
+      bool any_uv = false, any_normal = false, all_normals = true;
+    };
+    const CornerKinds kinds = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, faces, 1 << 14), CornerKinds{},
+        [&](const tbb::blocked_range<size_t>& r, CornerKinds acc) {
+          for (size_t f = r.begin(); f < r.end(); ++f) {
+            if (s.mesh.num_face_vertices[f] != 3) continue;
+            for (int k = 0; k < 3; ++k) {
+              const tinyobj::index_t& ix = idx[face_start[f] + k];
+              acc.any_uv |= corner_uv(ix) >= 0;
+              bool hn = corner_normal(ix) >= 0;
+              acc.any_normal |= hn;
+              acc.all_normals &= hn;
+            }
+          }
+          return acc;
+        },
+        [](CornerKinds a, const CornerKinds& b) {
+          return CornerKinds{a.any_uv || b.any_uv, a.any_normal || b.any_normal, a.all_normals && b.all_normals};
+        });
+    const bool any_uv = kinds.any_uv, any_normal = kinds.any_normal, all_normals = kinds.all_normals;
     // Normals wanted per vertex unless the file gives none and the caller
     // asked for facets: then the mesh has none and the renderer uses face normals.
     const bool generate = !all_normals;

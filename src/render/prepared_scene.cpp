@@ -13,6 +13,11 @@
 namespace rayform {
 namespace {
 
+// Meshes under this many triangles are built by one task each (below the
+// mesh builder's threshold for parallel binning and partition), so several
+// are built at once.
+constexpr size_t small_mesh_triangles = size_t(1) << 15;
+
 Bounds3 object_bounds(const Scene& scene, ShapeKind kind, int shape, const std::vector<MeshAccel>& meshes) {
   Bounds3 b;
   switch (kind) {
@@ -153,19 +158,30 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
         inst.kind = n.shape_kind;
         inst.shape = n.shape;
         inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
-        inst.has_transform = !is_identity(to_world);
         inst.to_world = to_world;
-        inst.to_object = glm::inverse(to_world);
-        inst.normal_to_world = glm::transpose(mat3(inst.to_object));
         if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
         p.instances.push_back(inst);
       },
       options.limits.instances);
+  // Each instance's inverse transforms, by parallel tasks.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      Instance& inst = p.instances[i];
+      inst.has_transform = !is_identity(inst.to_world);
+      inst.to_object = glm::inverse(inst.to_world);
+      inst.normal_to_world = glm::transpose(mat3(inst.to_object));
+    }
+  });
 
   // Build each used mesh once, however often it is instanced; in mesh order,
   // which makes the shared builds (collective) the same on every part.
   p.meshes.resize(scene.meshes.size());
   MeshAccelCache* cache = options.share && options.share->shared() ? nullptr : options.cache;
+  // Small meshes (whose builds are one task each) are built at once, large
+  // ones one after another, each by parallel tasks; under a WorkShare in
+  // order, each build a collective.
+  const WorkShare* share = options.share && options.share->shared() ? options.share : nullptr;
+  std::vector<size_t> to_build, small;
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     if (!mesh_used[i]) continue;
     if (cache)
@@ -173,21 +189,29 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
         p.meshes[i] = std::move(*kept);
         continue;
       }
-    p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
+    (!share && scene.meshes[i].triangle_count() < small_mesh_triangles ? small : to_build).push_back(i);
   }
+  tbb::parallel_for(size_t(0), small.size(), [&](size_t j) {
+    const Mesh& m = scene.meshes[small[j]];
+    p.meshes[small[j]] = build_mesh_accel(m.positions, m.indices, options.bvh, nullptr);
+  });
+  for (size_t i : to_build)
+    p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
 
   // Top level over bounded instances; planes stay outside.
   std::vector<Bounds3> bounds(p.instances.size());
-  for (size_t i = 0; i < p.instances.size(); ++i) {
-    Instance& inst = p.instances[i];
-    if (inst.kind == ShapeKind::plane) {
-      p.plane_instances.push_back(uint32_t(i));
-      continue;  // empty bounds: left out of the BVH
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      Instance& inst = p.instances[i];
+      if (inst.kind == ShapeKind::plane) continue;  // empty bounds: left out of the BVH
+      Bounds3 ob = object_bounds(scene, inst.kind, inst.shape, p.meshes);
+      inst.world_bounds = inst.has_transform ? transform_bounds(inst.to_world, ob) : ob;
+      bounds[i] = inst.world_bounds;
     }
-    Bounds3 ob = object_bounds(scene, inst.kind, inst.shape, p.meshes);
-    inst.world_bounds = inst.has_transform ? transform_bounds(inst.to_world, ob) : ob;
-    bounds[i] = inst.world_bounds;
-    p.bounds.expand(inst.world_bounds);
+  });
+  for (size_t i = 0; i < p.instances.size(); ++i) {
+    if (p.instances[i].kind == ShapeKind::plane) p.plane_instances.push_back(uint32_t(i));
+    else p.bounds.expand(bounds[i]);
   }
   BvhBuildOptions top_options = options.bvh;
   top_options.max_leaf_size = 1;

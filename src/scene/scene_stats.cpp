@@ -2,9 +2,31 @@
 
 #include "rayform/scene/node_walk.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <sstream>
 
 namespace rayform {
+namespace {
+
+// The bounds of `points`, by parallel tasks over blocks joined in order: the
+// same bounds as expanding by each point in turn (where +0 and -0 tie, the
+// first point's).
+Bounds3 bounds_of(const std::vector<vec3>& points) {
+  constexpr size_t block = size_t(1) << 15;
+  const size_t blocks = (points.size() + block - 1) / block;
+  std::vector<Bounds3> parts(blocks);
+  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+    const size_t end = std::min(points.size(), (b + 1) * block);
+    for (size_t i = b * block; i < end; ++i) parts[b].expand(points[i]);
+  });
+  Bounds3 all;
+  for (const Bounds3& part : parts) all.expand(part);
+  return all;
+}
+
+}  // namespace
 
 SceneStats scene_stats(const Scene& scene, uint64_t max_instances) {
   SceneStats st;
@@ -45,7 +67,7 @@ SceneStats scene_stats(const Scene& scene, uint64_t max_instances) {
             st.mesh_triangles += mesh.triangle_count();
             Bounds3& b = mesh_bounds[size_t(n.shape)];
             if (!mesh_bounded[size_t(n.shape)]) {
-              for (const vec3& v : mesh.positions) b.expand(v);
+              b = bounds_of(mesh.positions);
               mesh_bounded[size_t(n.shape)] = 1;
             }
             if (!b.empty()) st.bounds.expand(transform_bounds(m, b));

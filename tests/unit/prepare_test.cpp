@@ -14,6 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cstring>
 #include <fstream>
@@ -131,6 +132,64 @@ const TrianglePacket* packets_of(const PreparedScene& p, size_t i) { return p.me
 
 bool same_accel(const MeshAccel& a, const MeshAccel& b) {
   return same_bytes(a.bvh.nodes, b.bvh.nodes) && same_bytes(a.packets, b.packets) && a.triangles == b.triangles;
+}
+
+TEST(Prepare, ManyMeshesAndInstancesPrepareTheSameOnOneThreadAndOnFour) {
+  // 40 small meshes (built at once, each by one task), two large ones (one
+  // after the other, each by parallel tasks), one unused; 2000 instances
+  // under transforms, a plane among them.
+  std::vector<Node> nodes;
+  Scene s;
+  for (int i = 0; i < 40; ++i)
+    s.meshes.push_back(i % 2 ? make_icosphere(1 + i % 3) : make_bumpy_torus(200 + 50 * i, i));
+  s.meshes.push_back(make_bumpy_torus(60000, 7));
+  s.meshes.push_back(make_grid(200, 190));
+  s.meshes.push_back(make_cube());
+  s.planes.push_back(Plane{});
+  for (int i = 0; i < 2000; ++i) {
+    Node n = shape_node(ShapeKind::mesh, i % 42);
+    n.local = glm::rotate(glm::translate(mat4(1.f), vec3(float(i % 50), float(i / 50), 0.f)), 0.01f * float(i),
+                          vec3(0.f, 1.f, 1.f));
+    nodes.push_back(n);
+  }
+  nodes.push_back(shape_node(ShapeKind::plane, 0));
+  Scene scene = scene_with(std::move(nodes));
+  scene.meshes = std::move(s.meshes);
+  scene.planes = std::move(s.planes);
+  auto prepare_on = [&](int threads) {
+    tbb::task_arena arena(threads);
+    PreparedScene p;
+    arena.execute([&] { p = prepare_scene(scene); });
+    return p;
+  };
+  const PreparedScene one = prepare_on(1), four = prepare_on(4);
+  ASSERT_EQ(one.meshes.size(), 43u);
+  ASSERT_EQ(four.meshes.size(), 43u);
+  for (size_t m = 0; m < 42; ++m) {
+    EXPECT_EQ(one.meshes[m].triangles.size(), scene.meshes[m].triangle_count()) << "mesh " << m;
+    EXPECT_TRUE(same_accel(one.meshes[m], four.meshes[m])) << "mesh " << m;
+  }
+  EXPECT_TRUE(four.meshes[42].bvh.nodes.empty()) << "an unused mesh was built";
+  ASSERT_EQ(one.instances.size(), 2001u);
+  ASSERT_EQ(four.instances.size(), 2001u);
+  for (size_t i = 0; i < one.instances.size(); ++i) {
+    const Instance &a = one.instances[i], &b = four.instances[i];
+    EXPECT_TRUE(a.kind == b.kind && a.shape == b.shape && a.material == b.material &&
+                a.has_transform == b.has_transform && std::memcmp(&a.to_world, &b.to_world, sizeof(mat4)) == 0 &&
+                std::memcmp(&a.to_object, &b.to_object, sizeof(mat4)) == 0 &&
+                std::memcmp(&a.normal_to_world, &b.normal_to_world, sizeof(mat3)) == 0 &&
+                std::memcmp(&a.world_bounds, &b.world_bounds, sizeof(Bounds3)) == 0)
+        << "instance " << i;
+  }
+  EXPECT_EQ(four.plane_instances, std::vector<uint32_t>{2000});
+  EXPECT_TRUE(same_bytes(one.top.nodes, four.top.nodes));
+  EXPECT_EQ(one.top.primitives, four.top.primitives);
+  EXPECT_EQ(std::memcmp(&one.bounds, &four.bounds, sizeof(Bounds3)), 0);
+  // The instances' records against one computed here.
+  const Instance& i7 = four.instances[7];
+  EXPECT_TRUE(i7.has_transform);
+  const mat4 inverse = glm::inverse(i7.to_world);
+  EXPECT_EQ(std::memcmp(&i7.to_object, &inverse, sizeof(mat4)), 0);
 }
 
 TEST(Prepare, ACacheKeepsTheBvhsOfUnchangedMeshesFromFrameToFrame) {
