@@ -6,6 +6,7 @@
 #include "rayform/accel/mesh_build_split.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <cstring>
@@ -99,6 +100,7 @@ void expect_same_partitions(uint32_t n, Layout layout, int bins) {
   RangeSplitter many(many_refs, bins, 1.f, /*parallel_threshold*/ 64);
   const Range root = root_of(one_refs);
   // Four workers even on a machine with fewer cores: the tasks interleave.
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 4);
   tbb::task_arena arena(4);
   arena.execute([&] { split_both(one, one_refs, many, many_refs, root, 5, "root "); });
 }
