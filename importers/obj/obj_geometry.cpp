@@ -1,30 +1,67 @@
 #include "rayform/importers/obj/obj_geometry.h"
 
+#include "rayform/importers/file_bytes.h"
+#include "rayform/importers/obj/obj_parallel_parse.h"
+#include "rayform/importers/obj/text_stream_buffer.h"
 #include "rayform/base/error.h"
 
+#include <tbb/global_control.h>
 #include <tiny_obj_loader.h>
 
-#include <cmath>
-#include <fstream>
+#include <istream>
+#include <memory>
 
 namespace rayform {
+namespace {
 
-ObjGeometry read_obj_geometry(const std::string& path) {
-  {
-    std::ifstream probe(path);
-    if (!probe) throw Error(path + ": cannot open OBJ file");
+// As read_obj_scene chooses (obj_reader.cpp): a text under 1 MiB, or one
+// thread, in one piece; else about 16 chunks per thread.
+constexpr size_t min_parallel_bytes = size_t(1) << 20;
+constexpr size_t chunks_per_thread = 16;
+
+// Where tinyobj::ObjReader::ParseFromFile (the one-piece parse this reader
+// made before the chunked one) looks for MTL files: the file's folder, as
+// LoadObj(filename) spells it ("" for a bare file name: as written).
+std::string mtl_base_dir(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  if (slash == std::string::npos || slash == 0) return {};
+  return path.substr(0, slash) + '/';
+}
+
+}  // namespace
+
+ObjGeometry read_obj_geometry(const std::string& path, const ObjGeometryOptions& options) {
+  const FileBytes file(path, "OBJ file");
+  const std::string_view text = file.view();
+  const std::string base_dir = mtl_base_dir(path);
+  const MaterialReaderFactory readers = [&] { return std::make_unique<tinyobj::MaterialFileReader>(base_dir); };
+
+  size_t chunk = options.parse_chunk_bytes;
+  if (chunk == 0) {
+    const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    chunk = threads > 1 && text.size() >= min_parallel_bytes ? text.size() / (chunks_per_thread * threads) + 1 : 0;
   }
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  config.mtl_search_path = "";  // geometry only: materials are not needed here
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string e = reader.Error();
-    while (!e.empty() && e.back() == '\n') e.pop_back();
-    throw Error(path + ": cannot read OBJ: " + e);
+  ObjParse parsed;
+  // The chunks' warnings are those of the whole text only as a set (a chunk
+  // repeats an unknown material's warning): any warning, and the text is
+  // parsed in one piece, for the very warnings of that parse.
+  const bool chunked = chunk != 0 && chunk != ObjGeometryOptions::serial &&
+                       parse_obj_chunked(text, readers, chunk, &parsed) && parsed.warn.empty();
+  if (!chunked) {
+    parsed = ObjParse{};
+    TextStreamBuffer buffer(text);
+    std::istream in(&buffer);
+    const std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+    std::vector<tinyobj::material_t> materials;
+    std::string e;
+    if (!tinyobj::LoadObj(&parsed.attrib, &parsed.shapes, &materials, &parsed.warn, &e, &in, reader.get(),
+                          /*triangulate*/ true, /*default_vcols_fallback*/ false)) {
+      while (!e.empty() && e.back() == '\n') e.pop_back();
+      throw Error(path + ": cannot read OBJ: " + e);
+    }
   }
-  const tinyobj::attrib_t& a = reader.GetAttrib();
+
+  const tinyobj::attrib_t& a = parsed.attrib;
   ObjGeometry g;
   g.positions.resize(a.vertices.size() / 3);
   for (size_t i = 0; i < g.positions.size(); ++i) {
@@ -43,7 +80,10 @@ ObjGeometry read_obj_geometry(const std::string& path) {
       throw Error(path + ": face refers to " + what + " " + std::to_string(index + 1) + " but the file has " +
                   std::to_string(count));
   };
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  size_t corners = 0;
+  for (const tinyobj::shape_t& shape : parsed.shapes) corners += shape.mesh.indices.size();
+  g.corners.reserve(corners);
+  for (const tinyobj::shape_t& shape : parsed.shapes) {
     size_t offset = 0;
     for (unsigned char fv : shape.mesh.num_face_vertices) {
       if (fv == 3) {
@@ -60,8 +100,7 @@ ObjGeometry read_obj_geometry(const std::string& path) {
     }
   }
   if (g.corners.empty()) throw Error(path + ": OBJ file has no triangles");
-  std::string w = reader.Warning();
-  if (!w.empty()) g.warnings.push_back(path + ": " + w);
+  if (!parsed.warn.empty()) g.warnings.push_back(path + ": " + parsed.warn);
   return g;
 }
 
