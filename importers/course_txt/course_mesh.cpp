@@ -1,8 +1,10 @@
 #include "rayform/importers/course_txt/course_mesh.h"
 
 #include "rayform/importers/obj/obj_geometry.h"
+#include "rayform/importers/obj/obj_vertex_weld.h"
 
-#include <map>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace rayform {
 
@@ -47,17 +49,24 @@ Mesh read_course_mesh(const std::string& path, CourseDialect dialect) {
     for (const auto& c : g.corners) m.indices.push_back(uint32_t(c.position));
     return m;
   }
-  // Split vertices by (position, uv) pair.
-  std::map<std::pair<int, int>, uint32_t> split;
-  for (const auto& c : g.corners) {
-    auto [it, inserted] = split.try_emplace({c.position, c.uv}, uint32_t(m.positions.size()));
-    if (inserted) {
-      m.positions.push_back(g.positions[c.position]);
-      if (!flat) m.normals.push_back(position_normals[c.position]);
-      m.uvs.push_back(c.uv >= 0 ? g.uvs[c.uv] : vec2(0.f));
+  // Vertices split by (position, uv) pair, numbered in the order the pairs
+  // are first met in corner order (obj_vertex_weld.h).
+  obj::WeldedVertices welded = obj::weld_vertices(g.positions.size(), g.corners.size(), [&](size_t c) {
+    return obj::CornerKey{g.corners[c].position, g.corners[c].uv, -1};
+  });
+  const size_t vertices = welded.first_corner.size();
+  m.positions.resize(vertices);
+  if (!flat) m.normals.resize(vertices);
+  m.uvs.resize(vertices);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t v = r.begin(); v < r.end(); ++v) {
+      const ObjGeometry::Corner& c = g.corners[welded.first_corner[v]];
+      m.positions[v] = g.positions[size_t(c.position)];
+      if (!flat) m.normals[v] = position_normals[size_t(c.position)];
+      m.uvs[v] = c.uv >= 0 ? g.uvs[size_t(c.uv)] : vec2(0.f);
     }
-    m.indices.push_back(it->second);
-  }
+  });
+  m.indices = std::move(welded.corner_vertex);
   return m;
 }
 
