@@ -3,7 +3,8 @@
 // before (a copy of that reader is the reference here): the same arrays bit
 // for bit, the same corners in the same order, the same warnings and errors.
 // And read_course_mesh's vertex split by (position, uv) numbers vertices as
-// the std::map split it replaces did (first met in corner order). Over the
+// the std::map split it replaces did (first met in corner order), with the
+// course's normals summed per position in the same order. Over the
 // shared OBJ assets, the course meshes and made-up files, cut in chunks of
 // several sizes.
 #include "rayform/importers/course_txt/course_mesh.h"
@@ -82,11 +83,34 @@ ObjGeometry reference_geometry(const std::string& path) {
   return g;
 }
 
+// course_position_normals as it was, one loop (a verbatim copy).
+std::vector<vec3> reference_position_normals(const std::vector<vec3>& positions, const std::vector<uint32_t>& corners,
+                                             CourseDialect dialect) {
+  std::vector<vec3> sum(positions.size(), vec3(0.f));
+  for (size_t c = 0; c + 2 < corners.size(); c += 3) {
+    const uint32_t i0 = corners[c], i1 = corners[c + 1], i2 = corners[c + 2];
+    vec3 n = glm::cross(positions[i1] - positions[i0], positions[i2] - positions[i0]);
+    if (dialect == CourseDialect::v2019) {
+      const float len = glm::length(n);
+      if (!(len > 0.f)) continue;
+      n /= len;
+    }
+    sum[i0] += n;
+    sum[i1] += n;
+    sum[i2] += n;
+  }
+  for (vec3& n : sum) {
+    const float len = glm::length(n);
+    n = len > 0.f ? n / len : vec3(0.f);
+  }
+  return sum;
+}
+
 // read_course_mesh's vertices as the std::map split made them, from `g`.
 Mesh reference_course_mesh(const std::string& path, const ObjGeometry& g, CourseDialect dialect) {
   std::vector<uint32_t> corners;
   for (const auto& c : g.corners) corners.push_back(uint32_t(c.position));
-  const std::vector<vec3> position_normals = course_position_normals(g.positions, corners, dialect);
+  const std::vector<vec3> position_normals = reference_position_normals(g.positions, corners, dialect);
   Mesh m;
   m.source_path = path;
   const bool flat = dialect == CourseDialect::a5 && g.positions.size() <= course_a5_flat_mesh_vertices;
@@ -251,6 +275,9 @@ TEST(ObjGeometryParallel, MadeUpFilesAsBefore) {
     files.push_back(t.write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\n\tv 0 1 0\r\n# c\r\nf 1 2 3\r\nf 1 3 2\r\n"));
     files.push_back(t.write("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n"));
     files.push_back(t.write("no_faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"));
+    files.push_back(t.write("bad_uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1/1 2/3 3/1\n"));
+    files.push_back(
+        t.write("bad_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1//1 2//1 3//4\n"));
     files.push_back(t.write("non_finite.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"));
     files.push_back(t.write("missing_mtl.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     files.push_back(t.dir / "does_not_exist.obj");
@@ -261,8 +288,9 @@ TEST(ObjGeometryParallel, MadeUpFilesAsBefore) {
 TEST(ObjGeometryParallel, CourseMeshSplitAsTheMapSplit) {
   TempFiles t;
   std::vector<fs::path> files = obj_files_under(test::shared_dir() / "course");
-  const fs::path beast = test::asset("obj/beast.obj");  // uvs with seams, over 1 MiB: parsed in chunks
-  if (fs::is_regular_file(beast)) files.push_back(beast);
+  // Over 1 MiB (parsed in chunks): uvs with seams; no uvs.
+  for (const char* big : {"obj/beast.obj", "obj/stanford-bunny.obj"})
+    if (fs::is_regular_file(test::asset(big))) files.push_back(test::asset(big));
   files.push_back(t.write("grid.obj", test::grid_file(40, true)));
   files.push_back(t.write("polygons.obj", test::polygon_file(20)));
   {
