@@ -144,6 +144,9 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   if (spread) spread->agree_ready(failure);
 
   if (job.default_bounces) ro.bounces = loaded.render.bounces;
+  if (ro.bounces > max_bounces && hooks.note)
+    hooks.note("bounces " + std::to_string(ro.bounces) + ": reflections and refractions are traced " +
+               std::to_string(max_bounces) + " deep at most; rendering " + std::to_string(max_bounces));
   if (job.default_tone_map) ro.tone_map = loaded.render.tone_map;
   ro.progress = hooks.progress;
   if (hooks.render_started) hooks.render_started();

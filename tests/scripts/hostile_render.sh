@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Hostile input to the renderer and the command line (issue 33): each case
+# makes its input here and must end within its time (timeout) with exit 0
+# and the right picture, or exit 1/2 with one line; nothing written outside
+# the asked place; no control byte echoed. Needs no third-party data.
+source "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+
+failures=0
+fail() { echo "FAIL [$1]: $2"; failures=$((failures + 1)); }
+pass() { echo "PASS [$1]"; }
+
+# The camera inside a mirror sphere, lit from inside.
+cat >mirror.txt <<'SCENE'
+PerspectiveCamera { center 0 0 0 direction 0 0 -1 up 0 1 0 angle 60 }
+Lights { numLights 1 PointLight { position 0 0.5 0 color 0.1 0.1 0.1 } }
+Materials { numMaterials 1 PhongMaterial { diffuseColor 0.1 0.1 0.1 specularColor 0.9 0.9 0.9 shininess 20 } }
+Background { color 0.2 0.1 0.6 ambientLight 0.02 0.02 0.02 }
+Group { numObjects 1 MaterialIndex 0 Sphere { center 0 0 0 radius 2 } }
+SCENE
+
+# 1. --bounces 100000 (and the course -bounces): the depth is capped at 64
+# with one note; the picture is the one of --bounces 64.
+timeout 60 "$RAYFORM_BIN" render mirror.txt --size 32x32 --bounces 64 -o b64.png 2>b64.err
+timeout 60 "$RAYFORM_BIN" render mirror.txt --size 32x32 --bounces 100000 -o big.png 2>big.err; rc=$?
+if [ $rc -ne 0 ]; then fail bounces "render --bounces 100000 exited $rc: $(head -c 300 big.err)"
+elif ! cmp -s b64.png big.png; then fail bounces "--bounces 100000 differs from --bounces 64"
+elif [ "$(grep -c 'note: bounces 100000: .* 64 deep at most' big.err)" != 1 ] || [ "$(wc -l <big.err)" != 1 ]; then
+  fail bounces "expected one note, got: $(cat big.err)"
+else pass bounces; fi
+timeout 60 "$RAYFORM_BIN" -input mirror.txt -size 32 32 -bounces 20000 -output course.png 2>course.err; rc=$?
+timeout 60 "$RAYFORM_BIN" -input mirror.txt -size 32 32 -bounces 64 -output course64.png 2>/dev/null
+if [ $rc -ne 0 ]; then fail course-bounces "-bounces 20000 exited $rc: $(head -c 300 course.err)"
+elif ! cmp -s course64.png course.png; then fail course-bounces "-bounces 20000 differs from -bounces 64"
+else pass course-bounces; fi
+# Below the cap the depth still counts: 8 and 64 differ for this mirror.
+timeout 60 "$RAYFORM_BIN" render mirror.txt --size 32x32 --bounces 8 -o b8.png 2>/dev/null
+if cmp -s b8.png b64.png; then fail bounces-below-cap "--bounces 8 and 64 give the same picture"; else pass bounces-below-cap; fi
+
+[ $failures -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }
+echo "all cases passed"
