@@ -186,7 +186,7 @@ void run_render_args(RenderArgs& a) {
   if (std::string problem = render_options_problem(a.job.render); !problem.empty()) throw UsageError("--" + problem);
   if (a.inputs.size() > 1 || a.turntable.frames > 1) {
     // A batch: each render on one rank (all in this process without mpirun).
-    const std::vector<RenderJob> jobs = batch_jobs(a.job, a.inputs, a.turntable);
+    const BatchJobs jobs = batch_jobs(a.job, a.inputs, a.turntable);
     if (int status = run_render_batch(jobs, a.turntable.frames > 1, a.reporting); status != 0)
       throw distributed::ReportedElsewhere("renders failed");
     return;

@@ -38,5 +38,19 @@ else pass course-bounces; fi
 timeout 60 "$RAYFORM_BIN" render mirror.txt --size 32x32 --bounces 8 -o b8.png 2>/dev/null
 if cmp -s b8.png b64.png; then fail bounces-below-cap "--bounces 8 and 64 give the same picture"; else pass bounces-below-cap; fi
 
+# 7. --frames 1000000000: the jobs are made as they are rendered, so frames
+# come out at once (before: none after 15 s, memory growing by 140 MB/s).
+mkdir spin
+timeout 5 "$RAYFORM_BIN" render mirror.txt --size 8x8 --frames 1000000000 -o 'spin/m_{frame}.png' 2>frames.err; rc=$?
+if [ $rc -ne 124 ]; then fail frames "expected to be still rendering after 5 s (124), got $rc: $(head -c 300 frames.err)"
+elif [ ! -s spin/m_0000.png ] || [ ! -s spin/m_0001.png ]; then fail frames "no frame written in 5 s"
+else pass frames; fi
+# Two inputs of one stem still collide, at the first frame.
+mkdir -p other; cp mirror.txt other/mirror.txt
+"$RAYFORM_BIN" render mirror.txt other/mirror.txt --frames 3 -o 'spin/{stem}_{frame}.png' 2>collide.err; rc=$?
+if [ $rc -ne 2 ] || ! grep -q "would both write spin/mirror_0000.png" collide.err; then
+  fail frames-collide "expected exit 2 naming spin/mirror_0000.png, got $rc: $(cat collide.err)"
+else pass frames-collide; fi
+
 [ $failures -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }
 echo "all cases passed"
