@@ -1,5 +1,6 @@
 #include "rayform/render/prepared_scene.h"
 
+#include "rayform/accel/duplicate_triangles.h"
 #include "rayform/image/image.h"
 #include "rayform/render/pbr_brdf.h"
 #include "rayform/scene/mesh_tangents.h"
@@ -173,7 +174,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
         p.meshes[i] = std::move(*kept);
         continue;
       }
-    p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
+    p.meshes[i] = build_mesh_accel_without_duplicates(scene.meshes[i], options.bvh, options.share);
   }
 
   // Top level over bounded instances; planes stay outside.

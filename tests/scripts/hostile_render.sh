@@ -38,6 +38,18 @@ else pass course-bounces; fi
 timeout 60 "$RAYFORM_BIN" render mirror.txt --size 32x32 --bounces 8 -o b8.png 2>/dev/null
 if cmp -s b8.png b64.png; then fail bounces-below-cap "--bounces 8 and 64 give the same picture"; else pass bounces-below-cap; fi
 
+# 8. Copies of one triangle are merged at prepare: 300000 of them render as
+# fast as one, to the same picture (before: each ray tested every copy).
+printf 'v -1 -1 0\nv 1 -1 0\nv 0 1 0\n' >one.obj
+cp one.obj copies.obj
+printf 'f 1 2 3\n' >>one.obj
+awk 'BEGIN { for (i = 0; i < 300000; ++i) print "f 1 2 3" }' >>copies.obj
+"$RAYFORM_BIN" render one.obj --size 64x64 -q -o one.png
+timeout 10 "$RAYFORM_BIN" render copies.obj --size 64x64 -q -o copies.png 2>copies.err; rc=$?
+if [ $rc -ne 0 ]; then fail copies "exited $rc (124: over 10 s): $(head -c 300 copies.err)"
+elif ! cmp -s one.png copies.png; then fail copies "300000 copies of a triangle differ from one"
+else pass copies; fi
+
 # 7. --frames 1000000000: the jobs are made as they are rendered, so frames
 # come out at once (before: none after 15 s, memory growing by 140 MB/s).
 mkdir spin
