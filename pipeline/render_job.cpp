@@ -116,6 +116,7 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   const auto t_load = Clock::now();
   try {
     loaded = load_ready(job, hooks);
+    check_outputs_are_not_inputs(outputs, loaded.scene);
     if (spread) {
       if (std::exception_ptr disagreement = spread->after_load(nullptr)) std::rethrow_exception(disagreement);
     }

@@ -50,6 +50,20 @@ if [ $rc -ne 0 ]; then fail copies "exited $rc (124: over 10 s): $(head -c 300 c
 elif ! cmp -s one.png copies.png; then fail copies "300000 copies of a triangle differ from one"
 else pass copies; fi
 
+# 9. render refuses to write over one of the scene's inputs (its texture
+# here), as convert does: exit 1, one line, the texture unchanged.
+mkdir tex
+"$RAYFORM_BIN" render mirror.txt --size 4x4 -q -o tex/checker.bmp
+cp tex/checker.bmp checker.orig
+printf 'newmtl m\nKd 1 1 1\nmap_Kd checker.bmp\n' >tex/materials.mtl
+printf 'mtllib materials.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n' \
+  >tex/materials.obj
+(cd tex && "$RAYFORM_BIN" render materials.obj --size 8x8 -q -o checker.bmp) 2>own.err; rc=$?
+if [ $rc -ne 1 ] || [ "$(wc -l <own.err)" != 1 ] || ! grep -q "would replace checker.bmp" own.err; then
+  fail own-texture "expected exit 1 and one line, got $rc: $(cat own.err)"
+elif ! cmp -s tex/checker.bmp checker.orig; then fail own-texture "the texture was replaced"
+else pass own-texture; fi
+
 # 7. --frames 1000000000: the jobs are made as they are rendered, so frames
 # come out at once (before: none after 15 s, memory growing by 140 MB/s).
 mkdir spin
