@@ -64,6 +64,21 @@ if [ $rc -ne 1 ] || [ "$(wc -l <own.err)" != 1 ] || ! grep -q "would replace che
 elif ! cmp -s tex/checker.bmp checker.orig; then fail own-texture "the texture was replaced"
 else pass own-texture; fi
 
+# 11. An input named '...txt' has the stem '..': {stem} becomes '__', so
+# 'out/{stem}/color.png' stays in out/ (before: ./color.png).
+mkdir -p stems/out
+cp mirror.txt stems/...txt
+(cd stems && "$RAYFORM_BIN" render ...txt --size 4x4 -q -o 'out/{stem}/color.png') 2>stem.err; rc=$?
+if [ -e stems/color.png ] || [ -e stems/out/color.png ]; then fail stem "written outside out/{stem}/: $(cd stems && find . -name color.png)"
+elif [ $rc -ne 2 ] || [ "$(wc -l <stem.err)" != 2 ] || ! grep -q "folder 'out/__' does not exist" stem.err; then
+  fail stem "expected exit 2 naming out/__, got $rc: $(cat stem.err)"
+else
+  mkdir stems/out/__
+  (cd stems && "$RAYFORM_BIN" render ...txt --size 4x4 -q -o 'out/{stem}/color.png') 2>stem.err; rc=$?
+  if [ $rc -ne 0 ] || [ ! -s stems/out/__/color.png ]; then fail stem "out/__/color.png not written ($rc): $(cat stem.err)"
+  else pass stem; fi
+fi
+
 # 7. --frames 1000000000: the jobs are made as they are rendered, so frames
 # come out at once (before: none after 15 s, memory growing by 140 MB/s).
 mkdir spin
