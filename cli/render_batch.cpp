@@ -1,6 +1,7 @@
 #include "render_batch.h"
 
 #include "course_args.h"
+#include "messages.h"
 #include "output_names.h"
 #include "rayform/distributed/ranks.h"
 #include "rayform/distributed/work_counter.h"
@@ -106,7 +107,8 @@ int run_render_batch(const BatchJobs& jobs, bool turntable, const Reporting& rep
         // One line naming the input (the readers' messages start with it),
         // written at once so that mpirun does not mix it with another rank's.
         const std::string what = e.what();
-        std::cerr << "rayform: error: " + (what.rfind(job.input, 0) == 0 ? "" : job.input + ": ") + what + "\n"
+        std::cerr << "rayform: error: " +
+                         terminal_text((what.rfind(job.input, 0) == 0 ? "" : job.input + ": ") + what) + "\n"
                   << std::flush;
         ++failed;
       }

@@ -79,6 +79,21 @@ else
   else pass stem; fi
 fi
 
+# 12. Names from files reach stderr escaped: ESC, BEL and C1 controls as
+# \u001b, bytes that are not UTF-8 as U+FFFD (in notes, errors, batch errors).
+mkdir names
+evil=$'evil\e]0;pwned\a\xff\xc2\x9b'
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"names/$evil.obj"
+printf 'v 0 0 0\n' >"names/bad$evil.obj"
+(cd names && "$RAYFORM_BIN" render "$evil.obj" --size 4x4 -o o.png; "$RAYFORM_BIN" render "bad$evil.obj" -o o.png
+ "$RAYFORM_BIN" render "$evil.obj" "bad$evil.obj" --size 4x4 -o '{stem}.png') 2>names.err
+if LC_ALL=C grep -q $'[\x01-\x09\x0b-\x1f\x7f]' names.err || LC_ALL=C grep -q $'\xc2[\x80-\x9f]' names.err; then
+  fail names "a control byte reached stderr: $(od -c names.err | head -5)"
+elif ! iconv -f UTF-8 -t UTF-8 names.err >/dev/null 2>&1; then fail names "stderr is not UTF-8"
+elif [ "$(grep -c 'evil\\u001b\]0;pwned\\u0007'$'\xef\xbf\xbd''\\u009b' names.err)" -lt 4 ]; then
+  fail names "expected the escaped name in the notes and errors: $(cat names.err)"
+else pass names; fi
+
 # 7. --frames 1000000000: the jobs are made as they are rendered, so frames
 # come out at once (before: none after 15 s, memory growing by 140 MB/s).
 mkdir spin
