@@ -94,6 +94,30 @@ elif [ "$(grep -c 'evil\\u001b\]0;pwned\\u0007'$'\xef\xbf\xbd''\\u009b' names.er
   fail names "expected the escaped name in the notes and errors: $(cat names.err)"
 else pass names; fi
 
+# 10. A mesh named with 300 bytes: convert names its side file with the
+# name's start and a hash (before: "File name too long").
+mkdir long
+long_name=$(printf 'n%.0s' $(seq 300))
+printf 'o %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' "$long_name" >long/long.obj
+"$RAYFORM_BIN" convert long/long.obj long/out.txt 2>long.err; rc=$?
+side=$(cd long && ls out_*.obj 2>/dev/null)
+if [ $rc -ne 0 ]; then fail long-name "convert exited $rc: $(head -c 300 long.err)"
+elif ! [[ "$side" =~ ^out_n{87}_[0-9a-f]{8}\.obj$ ]]; then fail long-name "side file '$side'"
+elif ! grep -q "$side" long/out.txt; then fail long-name "out.txt does not name $side"
+else pass long-name; fi
+# The same for a glTF mesh name.
+cat >long/long.gltf <<GLTF
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"name":"$long_name","primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+"bufferViews":[{"buffer":0,"byteLength":36}],
+"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]}
+GLTF
+"$RAYFORM_BIN" convert long/long.gltf long/g.txt 2>long.err; rc=$?
+if [ $rc -ne 0 ] || [ -z "$(cd long && ls g_n*_[0-9a-f]*.obj 2>/dev/null)" ]; then
+  fail long-gltf-name "convert exited $rc: $(head -c 300 long.err)"
+else pass long-gltf-name; fi
+
 # 7. --frames 1000000000: the jobs are made as they are rendered, so frames
 # come out at once (before: none after 15 s, memory growing by 140 MB/s).
 mkdir spin
