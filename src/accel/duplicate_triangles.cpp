@@ -4,6 +4,8 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cstring>
 #include <span>
 
@@ -69,11 +71,33 @@ std::vector<uint32_t> distinct_triangles(const Mesh& m) {
   if (n < 2 || n >= (size_t(1) << index_bits)) return {};
   auto corner = [&](size_t t, size_t k) { return m.indices[3 * t + k]; };
   auto face_material = [&](size_t t) { return t < m.face_materials.size() ? m.face_materials[t] : invalid; };
-  // (position hash, index) in one word, sorted: the triangles of equal
+  std::vector<uint64_t> hashes(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t t) { hashes[t] = position_hash(m, t); });
+  // The candidates: triangles whose hash falls in a slot of a table of 8 to
+  // 16 slots a triangle that another one's hash falls in too (every
+  // duplicate, and about one triangle in 8 besides), so that only they are
+  // sorted.
+  const int slot_bits = int(std::bit_width(n)) + 3;
+  const size_t words = (size_t(1) << slot_bits) / 64 + 1;
+  std::vector<std::atomic<uint64_t>> seen(words), twice(words);  // zeroed (C++20)
+  auto slot = [&](size_t t) { return hashes[t] >> (64 - slot_bits); };
+  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+    const uint64_t s = slot(t), bit = uint64_t(1) << (s & 63);
+    if (seen[s >> 6].fetch_or(bit, std::memory_order_relaxed) & bit)
+      twice[s >> 6].fetch_or(bit, std::memory_order_relaxed);
+  });
+  std::vector<std::atomic<uint64_t>>().swap(seen);
+  // (position hash, index) in one word, sorted: the candidates of equal
   // corner positions (and a few others) in runs, lowest index first.
-  std::vector<uint64_t> keys(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) { keys[t] = (position_hash(m, t) << index_bits) | t; });
+  std::vector<uint64_t> keys;
+  for (size_t t = 0; t < n; ++t) {
+    const uint64_t s = slot(t);
+    if (twice[s >> 6].load(std::memory_order_relaxed) >> (s & 63) & 1) keys.push_back((hashes[t] << index_bits) | t);
+  }
+  std::vector<std::atomic<uint64_t>>().swap(twice);
+  std::vector<uint64_t>().swap(hashes);
   tbb::parallel_sort(keys.begin(), keys.end());
+  const size_t candidates = keys.size();
   constexpr uint64_t index_mask = (uint64_t(1) << index_bits) - 1;
   auto full_hash = [&](size_t t) {
     uint64_t h = mix(0, uint32_t(face_material(t)));
@@ -117,9 +141,9 @@ std::vector<uint32_t> distinct_triangles(const Mesh& m) {
   };
   std::vector<uint32_t> run;
   std::vector<std::pair<uint64_t, uint32_t>> refined;
-  for (size_t g = 0; g < n;) {
+  for (size_t g = 0; g < candidates;) {
     size_t end = g + 1;
-    while (end < n && keys[end] >> index_bits == keys[g] >> index_bits) ++end;
+    while (end < candidates && keys[end] >> index_bits == keys[g] >> index_bits) ++end;
     if (end - g > 1) {
       run.clear();
       for (size_t i = g; i < end; ++i) run.push_back(uint32_t(keys[i] & index_mask));
