@@ -44,6 +44,15 @@ TEST(DuplicateTriangles, SameCornersInTheSameOrderWithTheSameAttributesAreMerged
   EXPECT_TRUE(distinct_triangles(m).empty());
 }
 
+TEST(DuplicateTriangles, ManyCopiesOfTwoKindsKeepOneOfEach) {
+  // 300 triangles at the same corners, alternately with the uvs of
+  // vertices 0..2 and with vertex 6's uv at corner 0 (past the run length
+  // beyond which the attributes are hashed too).
+  Mesh m = corners_mesh();
+  for (int k = 0; k < 300; ++k) m.indices.insert(m.indices.end(), {k % 2 ? 6u : 0u, 1u, 2u});
+  EXPECT_EQ(distinct_triangles(m), (std::vector<uint32_t>{0, 1}));
+}
+
 TEST(DuplicateTriangles, HitsReportTheLowestIndexWithTheSameTAndBarycentrics) {
   Mesh one = corners_mesh(), copies = corners_mesh();
   one.indices = {0, 1, 2};
