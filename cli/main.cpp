@@ -1,6 +1,7 @@
 // rayform: the command-line program. A thin layer over src/ and importers/:
 // the course's own flags verbatim, and subcommands built with CLI11.
 #include "commands.h"
+#include "messages.h"
 #include "course_args.h"
 #include "heap_reuse.h"
 #include "rayform/distributed/ranks.h"
@@ -106,15 +107,17 @@ int main(int argc, char** argv) {
   } catch (const rayform::UsageError& e) {
     // Every rank parses the same command line: one message is enough.
     if (rayform::distributed::ranks().root())
-      std::cerr << "rayform: " << e.what() << "\n(run 'rayform --help' for usage)\n";
+      std::cerr << "rayform: " + rayform::cli::terminal_text(e.what()) + "\n(run 'rayform --help' for usage)\n";
     return 2;
   } catch (const rayform::distributed::ReportedElsewhere&) {
     return 1;
   } catch (const rayform::Error& e) {
-    std::cerr << std::string("rayform: error: ") + e.what() + "\n";  // one write: ranks' lines stay whole
+    std::cerr << "rayform: error: " + rayform::cli::terminal_text(e.what()) +
+                     "\n";  // one write: ranks' lines stay whole
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << std::string("rayform: error: ") + e.what() + "\n";  // one write: ranks' lines stay whole
+    std::cerr << "rayform: error: " + rayform::cli::terminal_text(e.what()) +
+                     "\n";  // one write: ranks' lines stay whole
     return 1;
   }
 }

@@ -1,6 +1,7 @@
 #include "render_batch.h"
 
 #include "course_args.h"
+#include "messages.h"
 #include "output_names.h"
 #include "rayform/distributed/ranks.h"
 #include "rayform/distributed/work_counter.h"
@@ -16,8 +17,8 @@
 namespace rayform::cli {
 namespace fs = std::filesystem;
 
-std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::string>& inputs,
-                                  const Turntable& turntable) {
+BatchJobs::BatchJobs(const RenderJob& job, const std::vector<std::string>& inputs, const Turntable& turntable)
+    : job_(job), turntable_(turntable), frames_(std::max(1, turntable.frames)) {
   if (inputs.size() > 1 && !has_placeholder(job.output, "stem"))
     throw UsageError("-o " + job.output + ": several inputs need {stem} in the output name, e.g. 'out/{stem}.png'");
   if (turntable.frames > 1 && !has_placeholder(job.output, "frame"))
@@ -31,39 +32,47 @@ std::vector<RenderJob> batch_jobs(const RenderJob& job, const std::vector<std::s
     sized.emplace_back(ec ? 0 : size, in);
   }
   std::stable_sort(sized.begin(), sized.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::vector<RenderJob> jobs;
-  std::map<std::string, std::string> written;  // output -> the input writing it
-  const int frames = std::max(1, turntable.frames);
-  for (const auto& sized_input : sized) {
-    // A named reference, not a structured binding: clang 14 (the fuzz build's
-    // compiler) does not let the lambda below capture a binding.
-    const std::string& input = sized_input.second;
-    for (int frame = 0; frame < frames; ++frame) {
-      RenderJob j = job;
-      j.input = input;
-      auto expand = [&](std::string& path, const char* option) {
+  for (const auto& sized_input : sized) inputs_.push_back(sized_input.second);
+  // Every output of the first and the last frame of every input, once.
+  for (const long long frame : frames_ > 1 ? std::vector<long long>{0, frames_ - 1} : std::vector<long long>{0}) {
+    std::map<std::string, std::string> written;  // output -> the input writing it
+    for (size_t k = 0; k < inputs_.size(); ++k) {
+      const RenderJob j = (*this)[(long long)k * frames_ + frame];
+      auto check = [&](const std::string& path, const char* option) {
         if (path.empty()) return;
-        path = expand_output_name(path, input, frame, option);
-        auto [at, fresh] = written.emplace(path, input);
+        auto [at, fresh] = written.emplace(path, j.input);
         if (!fresh)
-          throw UsageError(std::string(option) + ": " + at->second + " and " + input + " would both write " + path);
+          throw UsageError(std::string(option) + ": " + at->second + " and " + j.input + " would both write " + path);
       };
-      expand(j.output, "-o");
-      if (j.depth) expand(j.depth->file, "--depth");
-      expand(j.normals, "--normals");
-      expand(j.albedo, "--albedo");
-      if (turntable.frames > 0) {
-        Orbit o = job.orbit.value_or(Orbit{});
-        o.azimuth_deg += float(frame) * turntable.sweep_deg / float(turntable.frames);
-        j.orbit = o;
-      }
-      jobs.push_back(std::move(j));
+      check(j.output, "-o");
+      if (j.depth) check(j.depth->file, "--depth");
+      check(j.normals, "--normals");
+      check(j.albedo, "--albedo");
     }
   }
-  return jobs;
 }
 
-int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, const Reporting& reporting) {
+RenderJob BatchJobs::operator[](long long i) const {
+  const std::string& input = inputs_[size_t(i / frames_)];
+  const int frame = int(i % frames_);
+  RenderJob j = job_;
+  j.input = input;
+  auto expand = [&](std::string& path, const char* option) {
+    if (!path.empty()) path = expand_output_name(path, input, frame, option);
+  };
+  expand(j.output, "-o");
+  if (j.depth) expand(j.depth->file, "--depth");
+  expand(j.normals, "--normals");
+  expand(j.albedo, "--albedo");
+  if (turntable_.frames > 0) {
+    Orbit o = job_.orbit.value_or(Orbit{});
+    o.azimuth_deg += float(frame) * turntable_.sweep_deg / float(turntable_.frames);
+    j.orbit = o;
+  }
+  return j;
+}
+
+int run_render_batch(const BatchJobs& jobs, bool turntable, const Reporting& reporting) {
   using clock = std::chrono::steady_clock;
   const distributed::Ranks& r = distributed::ranks();
   const auto start = clock::now();
@@ -76,8 +85,8 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, const R
     std::shared_ptr<const LoadedScene> last;
     std::shared_ptr<MeshAccelCache> last_accels;  // its meshes' BVHs, kept from frame to frame
     std::string last_input;
-    for (long long i; (i = counter.next()) < (long long)jobs.size();) {
-      RenderJob job = jobs[size_t(i)];
+    for (long long i; (i = counter.next()) < jobs.size();) {
+      RenderJob job = jobs[i];
       const auto t = clock::now();
       try {
         if (job.orbit && turntable) {
@@ -98,7 +107,8 @@ int run_render_batch(const std::vector<RenderJob>& jobs, bool turntable, const R
         // One line naming the input (the readers' messages start with it),
         // written at once so that mpirun does not mix it with another rank's.
         const std::string what = e.what();
-        std::cerr << "rayform: error: " + (what.rfind(job.input, 0) == 0 ? "" : job.input + ": ") + what + "\n"
+        std::cerr << "rayform: error: " +
+                         terminal_text((what.rfind(job.input, 0) == 0 ? "" : job.input + ": ") + what) + "\n"
                   << std::flush;
         ++failed;
       }

@@ -186,7 +186,7 @@ void run_render_args(RenderArgs& a) {
   if (std::string problem = render_options_problem(a.job.render); !problem.empty()) throw UsageError("--" + problem);
   if (a.inputs.size() > 1 || a.turntable.frames > 1) {
     // A batch: each render on one rank (all in this process without mpirun).
-    const std::vector<RenderJob> jobs = batch_jobs(a.job, a.inputs, a.turntable);
+    const BatchJobs jobs = batch_jobs(a.job, a.inputs, a.turntable);
     if (int status = run_render_batch(jobs, a.turntable.frames > 1, a.reporting); status != 0)
       throw distributed::ReportedElsewhere("renders failed");
     return;
@@ -240,7 +240,8 @@ void add_render_command(CLI::App& app) {
       "Reflection/refraction depth (default: " + std::to_string(course_a5_default_bounces) +
           " for course a5 scenes; for files with physically based (metallic-roughness) materials " +
           std::to_string(pbr_default_bounces) + ", or " + std::to_string(transmission_default_bounces) +
-          " when one of them uses transmission; else 0)");
+          " when one of them uses transmission; else 0); at most " + std::to_string(max_bounces) +
+          ", a larger N renders as " + std::to_string(max_bounces) + " with a note");
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
       ->check(CLI::IsMember({"box", "tent"}))

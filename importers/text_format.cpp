@@ -1,6 +1,8 @@
 #include "rayform/importers/text_format.h"
 
 #include <charconv>
+#include <cstdint>
+#include <cstdio>
 
 namespace rayform {
 
@@ -27,6 +29,15 @@ std::string safe_file_name(const std::string& name) {
     out += ok ? c : '_';
   }
   while (!out.empty() && out[0] == '.') out[0] = '_';  // no hidden files
+  if (out.size() > max_safe_file_name) {
+    // The start, and a hash of the whole name (FNV-1a, 32 bits) that keeps
+    // names apart which differ only past the cut.
+    uint32_t h = 2166136261u;
+    for (char c : name) h = (h ^ uint8_t(c)) * 16777619u;
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "_%08x", unsigned(h));
+    out = out.substr(0, max_safe_file_name - 9) + hex;
+  }
   return out.empty() ? std::string("unnamed") : out;
 }
 

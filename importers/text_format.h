@@ -16,7 +16,13 @@ std::string format_vec3(vec3 v);
 // Names quoted and joined for messages: 'a', 'b', 'c'.
 std::string quoted_list(const std::set<std::string>& names);
 
-// A file name made of [A-Za-z0-9._-] only (others become '_'), never empty.
+// The longest name safe_file_name returns: with an extension and a "_k"
+// suffix it stays far below the 255 bytes a file name may have.
+inline constexpr size_t max_safe_file_name = 100;
+
+// A file name made of [A-Za-z0-9._-] only (others become '_'), never empty;
+// a longer name than max_safe_file_name is cut to its first 91 bytes and
+// "_" and 8 hexadecimal digits of a hash of the whole name.
 std::string safe_file_name(const std::string& name);
 
 }  // namespace rayform

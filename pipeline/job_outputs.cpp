@@ -5,6 +5,8 @@
 #include "rayform/pipeline/render_job.h"
 #include "rayform/render/aov_images.h"
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -30,6 +32,35 @@ void check_output_folder(const std::string& path, const std::string& what) {
   std::error_code ec;
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw UsageError(path + ": cannot write " + what + ": folder '" + dir.string() + "' does not exist");
+}
+
+void check_outputs_are_not_inputs(const JobOutputs& outputs, const Scene& scene) {
+  struct Existing {
+    std::string path;
+    dev_t device;
+    ino_t inode;
+  };
+  std::vector<Existing> written;  // the outputs that exist already
+  auto add = [&](const ImageFile& f) {
+    struct stat st {};
+    if (::stat(f.path.c_str(), &st) == 0) written.push_back(Existing{f.path, st.st_dev, st.st_ino});
+  };
+  add(outputs.color);
+  for (const std::optional<ImageFile>* f : {&outputs.depth, &outputs.normals, &outputs.albedo})
+    if (*f) add(**f);
+  if (written.empty()) return;
+  auto check = [&](const std::string& input) {
+    struct stat st {};
+    if (input.empty() || ::stat(input.c_str(), &st) != 0) return;
+    for (const Existing& w : written)
+      if (w.device == st.st_dev && w.inode == st.st_ino)
+        throw Error(w.path + ": writing it would replace " + input +
+                    ", which the scene was read from; choose another output name or folder");
+  };
+  check(scene.source_path);
+  for (const Mesh& m : scene.meshes) check(m.source_path);
+  for (const Texture& t : scene.textures) check(t.path);
+  if (scene.background.environment.source == Environment::Source::file) check(scene.background.environment.path);
 }
 
 JobOutputs parse_job_outputs(const RenderJob& job) {

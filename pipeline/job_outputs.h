@@ -32,6 +32,12 @@ JobOutputs parse_job_outputs(const RenderJob& job);
 // Throws UsageError when the folder `path` is to be written in does not exist.
 void check_output_folder(const std::string& path, const std::string& what);
 
+// Throws Error (one line naming both) when an output is one of the files the
+// scene was read from (its file, its meshes' files, its textures, its
+// environment picture), as the scene writers refuse (OutputFiles::protect):
+// the render would replace its own input.
+void check_outputs_are_not_inputs(const JobOutputs& outputs, const Scene& scene);
+
 // The RenderOptions the outputs decide: which per-pixel buffers the render
 // fills, alpha for a transparent job, and the colour format (8-bit values
 // straight from the render loop when the files take them).

@@ -116,6 +116,7 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   const auto t_load = Clock::now();
   try {
     loaded = load_ready(job, hooks);
+    check_outputs_are_not_inputs(outputs, loaded.scene);
     if (spread) {
       if (std::exception_ptr disagreement = spread->after_load(nullptr)) std::rethrow_exception(disagreement);
     }
@@ -144,6 +145,9 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   if (spread) spread->agree_ready(failure);
 
   if (job.default_bounces) ro.bounces = loaded.render.bounces;
+  if (ro.bounces > max_bounces && hooks.note)
+    hooks.note("bounces " + std::to_string(ro.bounces) + ": reflections and refractions are traced " +
+               std::to_string(max_bounces) + " deep at most; rendering " + std::to_string(max_bounces));
   if (job.default_tone_map) ro.tone_map = loaded.render.tone_map;
   ro.progress = hooks.progress;
   if (hooks.render_started) hooks.render_started();

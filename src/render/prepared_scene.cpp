@@ -1,5 +1,6 @@
 #include "rayform/render/prepared_scene.h"
 
+#include "rayform/accel/duplicate_triangles.h"
 #include "rayform/image/image.h"
 #include "rayform/render/pbr_brdf.h"
 #include "rayform/scene/mesh_tangents.h"
@@ -192,11 +193,10 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
     (!share && scene.meshes[i].triangle_count() < small_mesh_triangles ? small : to_build).push_back(i);
   }
   tbb::parallel_for(size_t(0), small.size(), [&](size_t j) {
-    const Mesh& m = scene.meshes[small[j]];
-    p.meshes[small[j]] = build_mesh_accel(m.positions, m.indices, options.bvh, nullptr);
+    p.meshes[small[j]] = build_mesh_accel_without_duplicates(scene.meshes[small[j]], options.bvh, nullptr);
   });
   for (size_t i : to_build)
-    p.meshes[i] = build_mesh_accel(scene.meshes[i].positions, scene.meshes[i].indices, options.bvh, options.share);
+    p.meshes[i] = build_mesh_accel_without_duplicates(scene.meshes[i], options.bvh, options.share);
 
   // Top level over bounded instances; planes stay outside.
   std::vector<Bounds3> bounds(p.instances.size());

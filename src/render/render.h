@@ -39,6 +39,12 @@ enum class ColorFormat : uint8_t { linear_float, unit8, srgb8 };
 // Pixels every sample hits have the same colour in all three.
 enum class AlphaMode : uint8_t { none, straight, premultiplied };
 
+// The deepest reflection/refraction traced: RenderOptions::bounces above it
+// render as max_bounces (the secondary rays recurse, one level a bounce,
+// so the depth is bounded whatever a file or flag asks; past it a mirror's
+// light is below what an 8-bit picture shows for a specular colour of at most 0.9).
+inline constexpr int max_bounces = 64;
+
 // The render parameters, one owner: their defaults are here, their rules in
 // render_options_problem below, and the command line fills this struct (no copy).
 struct RenderOptions {
@@ -46,7 +52,7 @@ struct RenderOptions {
   int camera = 0;                 // index into Scene::cameras
   int threads = 0;                // 0: all hardware threads
   bool shadows = false;           // shadow rays to each light
-  int bounces = 0;                // reflection/refraction depth
+  int bounces = 0;                // reflection/refraction depth (used up to max_bounces)
   int spp = 1;                    // samples per pixel (1: the pixel centre only)
   PixelFilter filter = PixelFilter::box;
   PixelSampler sampler = PixelSampler::stratified;  // random: also for spp 1 (no centre ray)

@@ -68,6 +68,10 @@ struct WhittedIntegrator {
   const PreparedScene& prepared;
   const RenderOptions& options;
   const Scene& scene;
+  // The reflection/refraction depth traced: options.bounces, at most
+  // max_bounces (render.h), which bounds the recursion below (each level
+  // holds a few frames of radiance -> shade -> secondary on the stack).
+  int bounces = std::min(options.bounces, max_bounces);
   // Whether shading may start rays at a hit (shadows, reflections, refractions).
   bool spawns_rays = options.shadows || (Specular && options.bounces > 0);
   // What shading needs of a hit point: a start for rays, the point for
@@ -232,7 +236,7 @@ struct WhittedIntegrator {
       else c += diffuse_light(kd, sp.normal, ls);
     }
     if constexpr (Specular) {
-      if (depth < options.bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth, medium);
+      if (depth < bounces && m.specular != vec3(0.f)) c += m.specular * secondary(sp, m, d, depth, medium);
     }
     return c;
   }
@@ -335,7 +339,7 @@ struct WhittedIntegrator {
         glm::dot(bs.direction, sp.geometric_normal) <= 0.f)
       return c;
     const Ray r = spawn_ray(sp.position, sp.position_error, sp.geometric_normal, bs.direction);
-    if (!bs.diffuse && depth < options.bounces) {
+    if (!bs.diffuse && depth < bounces) {
       float coverage;
       return c + bs.weight * radiance(r, depth + 1, &coverage, outside_index, hash_bits(seed + 2u), {bs.pdf, 0.f});
     }
@@ -396,7 +400,7 @@ struct WhittedIntegrator {
                             (1.f - max_component(fresnel_schlick(dielectric_f0(s), vec3(s.specular), n_dot_v)));
       c += s.base * (diffuse * point.occlusion / pi) * irradiance(prepared.environment_irradiance, n);
     }
-    if (depth >= options.bounces) return c;
+    if (depth >= bounces) return c;
     // A ray from the hit; when it leaves the scene it sees the environment
     // blurred to `blur` (the mirror ray of a rough surface).
     auto trace_dir = [&](vec3 w, float blur) {
