@@ -128,6 +128,9 @@ void encode_strip(const Image8& image, int y0, int y1, bool first, bool last, St
     status = deflate(&z, flush);
     used += before - z.avail_out;
   } while (status == Z_OK && (last || z.avail_out == 0));
+  // A flush that had exactly filled the buffer leaves nothing to do: zlib
+  // then answers Z_BUF_ERROR to the call that asked for more.
+  if (!last && status == Z_BUF_ERROR && z.avail_in == 0 && used > head) status = Z_OK;
   deflateEnd(&z);
   if (status != (last ? Z_STREAM_END : Z_OK)) throw Error("zlib: deflate failed");
   strip.chunk.resize(used);
