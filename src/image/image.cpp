@@ -1,5 +1,6 @@
 #include "rayform/image/image.h"
 
+#include "rayform/image/exr_writer.h"
 #include "rayform/image/header_check.h"
 #include "rayform/image/image_file.h"
 #include "rayform/image/interrupt_cleanup.h"
@@ -89,7 +90,7 @@ bool is_writable_image_path(const std::string& path) { return is_writable(image_
 
 bool is_writable(const ImageFile& file) {
   if (file.extension.empty()) return false;
-  return file.stb || oiio_can_write(file.path);
+  return file.stb || file.exr || oiio_can_write(file.path);
 }
 
 namespace {
@@ -125,10 +126,11 @@ std::string write_image_temporary(const ImageFile& file, const Image& image) {
   const std::string& path = file.path;
   if (!is_writable(file))
     throw Error(path + ": cannot write images of this type (unknown extension '" + file.extension + "')");
-  return write_temporary(
-      path, image.width, image.height, image.channels, [&](const std::string& tmp, std::string* error) {
-        return file.stb ? stb_write(tmp, file.extension, image, error) : oiio_write(path, tmp, image, error);
-      });
+  return write_temporary(path, image.width, image.height, image.channels,
+                         [&](const std::string& tmp, std::string* error) {
+                           if (file.stb) return stb_write(tmp, file.extension, image, error);
+                           return file.exr ? write_exr(tmp, image, error) : oiio_write(path, tmp, image, error);
+                         });
 }
 
 std::string write_image_temporary(const std::string& path, const Image& image) {

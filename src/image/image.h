@@ -1,6 +1,6 @@
 // Float and 8-bit image buffers and their file I/O: reading through
-// image_decode.h (or OpenImageIO), writing through stb_image_write, our BMP
-// writer or OpenImageIO (format chosen by the file extension). Row 0 is the
+// image_decode.h (or OpenImageIO), writing through stb_image_write, our BMP,
+// PNG and EXR writers or OpenImageIO (format chosen by the file extension). Row 0 is the
 // top row; channels are interleaved.
 #pragma once
 

@@ -12,6 +12,7 @@ ImageFile image_file(const std::string& path) {
   const std::string& ext = f.extension;
   f.stb = stb_writes(ext);
   f.bits8 = stb_writes_8bit(ext);
+  f.exr = ext == ".exr";
   // The extensions of OpenImageIO's float formats in oiio_plugin_module.cpp
   // (openexr, hdr, tiff, fits, pfm); tests/unit/color_output_test.cpp reads
   // back values above 1 from .exr, .tif and .hdr (rayform reads no FITS, and

@@ -10,7 +10,8 @@ namespace rayform {
 struct ImageFile {
   std::string path;
   std::string extension;  // lower-case, with its dot; "" when none
-  bool stb = false;       // written by stb (bmp, png, tga, jpg/jpeg, hdr), else by OpenImageIO
+  bool stb = false;       // written by stb_writer.h (bmp, png, tga, jpg/jpeg, hdr), else by exr_writer.h or OpenImageIO
+  bool exr = false;       // OpenEXR, written by exr_writer.h (not OpenImageIO)
   bool bits8 = false;     // 8-bit samples (bmp, png, tga, jpg/jpeg): written from 8-bit pixels too
   bool floats = false;    // float samples, unclamped (exr, hdr, tif/tiff, fits, pfm)
   bool alpha = false;     // written with alpha: png, tga (straight), exr, tif/tiff (premultiplied)

@@ -2,6 +2,7 @@
 
 #include "rayform/image/bmp_writer.h"
 #include "rayform/image/checked_write.h"
+#include "rayform/image/png_writer.h"
 #include "rayform/image/quantize.h"
 
 #include <stb_image_write.h>
@@ -40,10 +41,10 @@ bool stb_write8(const std::string& path, const std::string& ext, const Image8& i
   const int w = img.width, h = img.height, c = img.channels;
   const unsigned char* q = img.pixels.data();
   if (ext == ".bmp" && (c == 1 || c == 3)) return write_bmp24(path, img, error);  // stb's bytes, faster
+  if (ext == ".png") return write_png(path, img, error);                          // in parallel, faster
   std::vector<unsigned char> bytes;
   int ok = 0;
-  if (ext == ".png") ok = stbi_write_png_to_func(append_bytes, &bytes, w, h, c, q, w * c);
-  else if (ext == ".bmp") ok = stbi_write_bmp_to_func(append_bytes, &bytes, w, h, c, q);
+  if (ext == ".bmp") ok = stbi_write_bmp_to_func(append_bytes, &bytes, w, h, c, q);
   else if (ext == ".tga") ok = stbi_write_tga_to_func(append_bytes, &bytes, w, h, c, q);
   else if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg_to_func(append_bytes, &bytes, w, h, c, q, 95);
   return write_encoded(path, ok, bytes, error);

@@ -1,9 +1,9 @@
 // Writing the everyday formats (bmp, png, tga, jpg; and Radiance hdr) through
 // stb_image_write from Debian's libstb-dev (24-bit BMP through our own
-// bmp_writer.h). Writing is no attack surface: the pixels are ours. Reading
-// no longer uses stb_image, which is not meant for untrusted files: see
-// image_decode.h. Other formats are written by OpenImageIO (oiio_plugin.h),
-// loaded on first use.
+// bmp_writer.h, PNG through png_writer.h). Writing is no attack surface: the
+// pixels are ours. Reading no longer uses stb_image, which is not meant for
+// untrusted files: see image_decode.h. EXR is written by exr_writer.h, other
+// formats by OpenImageIO (oiio_plugin.h), loaded on first use.
 #pragma once
 
 #include "rayform/image/image.h"
