@@ -57,8 +57,14 @@ class Reader {
   void array(std::vector<T>& v) {
     const uint64_t n = value<uint64_t>();
     if (n > (in_.size() - at_) / sizeof(T)) throw std::logic_error("decode_textures: a part's bytes end early");
-    v.resize(size_t(n));
-    raw(v.data(), size_t(n) * sizeof(T));
+    if constexpr (sizeof(T) == 1) {  // bytes: copied without zeroing first
+      const T* from = reinterpret_cast<const T*>(in_.data() + at_);
+      v.assign(from, from + n);
+      at_ += size_t(n);
+    } else {  // floats, at any alignment in the bytes
+      v.resize(size_t(n));
+      raw(v.data(), size_t(n) * sizeof(T));
+    }
   }
 
  private:
@@ -112,7 +118,14 @@ void decode_textures(const Scene& scene, const std::vector<TextureDecodeItem>& i
       if (errors[k].empty()) errors[k] = "texture decoding failed";
     }
   });
+  // One allocation for the bytes sent (the images are megabytes each).
+  size_t bytes = 0;
+  for (size_t k = 0; k < own.size(); ++k) {
+    const TextureImage& t = *items[own[k]].second;
+    bytes += 64 + sizeof t.to_linear + errors[k].size() + t.rgba8.size() + t.rgbaf.size() * sizeof(float);
+  }
   std::vector<std::byte> mine;
+  mine.reserve(bytes);
   Writer w(mine);
   for (size_t k = 0; k < own.size(); ++k) {
     w.value(uint8_t(errors[k].empty() ? 1 : 0));
