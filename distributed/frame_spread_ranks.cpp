@@ -14,6 +14,7 @@
 #include <cstring>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -24,18 +25,22 @@ namespace {
 // OBJ's parse is exchanged among them, and a rank that could not open the
 // file (a path missing on its node) or read another copy would leave the
 // others waiting in that exchange. Each rank gives the file's size (or
-// -errno when it cannot open it); unless all agree, every rank fails its
-// load, rank 0 naming the first rank that differs. Ranks that all fail alike
-// go on to the load, which fails on each before any exchange and says why.
+// -errno when it cannot open it) and whether it has loaded the scene so far
+// (one gather, the gate); unless all sizes agree, every rank fails, rank 0
+// naming the first rank that differs.
 //
-// The agreement comes as late as it can: before the load's first exchange,
-// or after the load when it makes none (agree() is called at both places and
-// acts once), so that what comes before (mapping the file, scanning a large
-// OBJ's chunks) overlaps MPI's start (ranks.h). A rank whose load fails
-// before its first exchange agrees after it, as every rank then does.
-class InputAgreement {
+// The gate comes as late as it can, so that the work before it overlaps
+// MPI's start (ranks.h; a course scene loads in a millisecond, MPI takes
+// tens of milliseconds to start, more when the machine is busy): before the
+// first exchange of the load or of prepare (a large OBJ's parse, a shared BVH
+// build, the textures' decoding), at once after a load that failed, or else
+// when the ranks agree that the scene is ready. A rank that failed its load
+// passes the gate with its flag down and prepares nothing; the others learn
+// it there (their exchange throws LoadFailedElsewhere) or at the readiness
+// agreement. Every rank makes one gate, then the same collectives.
+class InputGate {
  public:
-  explicit InputAgreement(std::string input) : input_(std::move(input)) {
+  explicit InputGate(std::string input) : input_(std::move(input)) {
     if (const int fd = ::open(input_.c_str(), O_RDONLY | O_CLOEXEC); fd < 0) {
       seen_ = -errno;
     } else {
@@ -45,33 +50,47 @@ class InputAgreement {
     }
   }
 
-  // Collective, the first time.
-  void agree() {
-    if (std::exchange(agreed_, true)) return;
-    const std::vector<long long> all = gather_numbers(seen_);
-    const auto other = std::find_if(all.begin(), all.end(), [&](long long s) { return s != all[0]; });
+  bool passed() const { return passed_; }
+  // Whether every rank had loaded the scene (or was still loading) at the gate.
+  bool all_loaded() const { return all_loaded_; }
+
+  // Collective, the first time: throws when the ranks read different files.
+  void pass(bool loaded) {
+    if (std::exchange(passed_, true)) return;
+    // The size and the flag in one number: 2 * size + flag.
+    const std::vector<long long> all = gather_numbers(seen_ * 2 + (loaded ? 1 : 0));
+    auto size = [](long long v) { return (v - (v & 1)) / 2; };
+    all_loaded_ = std::all_of(all.begin(), all.end(), [](long long v) { return (v & 1) != 0; });
+    const auto other = std::find_if(all.begin(), all.end(), [&](long long v) { return size(v) != size(all[0]); });
     if (other == all.end()) return;
     auto what = [](long long s) {
       return s < 0 ? std::string("cannot open it (") + std::strerror(int(-s)) + ")"
                    : "reads " + std::to_string(s) + " bytes";
     };
     if (!ranks().root()) throw ReportedElsewhere("rank 0 reports the error");
-    throw Error(input_ + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(*other) +
-                ", rank 0 " + what(all[0]) + ": every rank must read the same file; nothing written");
+    throw Error(input_ + ": rank " + std::to_string(other - all.begin()) + " of the MPI job " + what(size(*other)) +
+                ", rank 0 " + what(size(all[0])) + ": every rank must read the same file; nothing written");
   }
 
  private:
   std::string input_;
   long long seen_ = 0;
-  bool agreed_ = false;
+  bool passed_ = false;
+  bool all_loaded_ = true;
+};
+
+// Thrown by an exchange of a rank that loaded the scene when another did not.
+struct LoadFailedElsewhere : std::runtime_error {
+  LoadFailedElsewhere() : std::runtime_error("another rank could not load the scene") {}
 };
 
 class RankFrameSpread final : public FrameSpread {
  public:
-  RankFrameSpread(const std::string& input, bool stats) : input_(input), stats_(stats) {
+  RankFrameSpread(const std::string& input, bool stats) : gate_(input), stats_(stats) {
     share_ = rank_work_share();
     share_.exchange = [exchange = share_.exchange, this](std::vector<std::byte> mine) {
-      input_.agree();
+      gate_.pass(/*loaded*/ true);  // so far
+      if (!gate_.all_loaded()) throw LoadFailedElsewhere();
       return exchange(std::move(mine));
     };
   }
@@ -81,15 +100,21 @@ class RankFrameSpread final : public FrameSpread {
   const WorkShare& work_share() override { return share_; }
 
   std::exception_ptr after_load(std::exception_ptr failure) override {
+    if (!failure || gate_.passed()) return failure;  // a rank that loaded passes the gate later
     try {
-      input_.agree();  // a different file is the cause, when it is one
+      gate_.pass(/*loaded*/ false);  // a different file is the cause, when it is one
     } catch (...) {
       return std::current_exception();
     }
     return failure;
   }
 
+  // Without a collective unless the gate was passed during the load: a rank
+  // that loaded the scene goes on to prepare, and learns at the gate whether
+  // every other did.
   bool all_loaded(bool ok) override {
+    if (!gate_.passed()) return ok;
+    if (!gate_.all_loaded()) return false;
     const std::vector<bool> loaded = gather_flags(ok);
     return std::find(loaded.begin(), loaded.end(), false) == loaded.end();
   }
@@ -99,6 +124,21 @@ class RankFrameSpread final : public FrameSpread {
   // its own; the others would say the same), rank 0 says that another
   // failed, and every rank stops with status 1.
   void agree_ready(std::exception_ptr failure) override {
+    if (!gate_.passed()) {
+      try {
+        gate_.pass(/*loaded*/ true);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    }
+    if (failure) {
+      try {
+        std::rethrow_exception(failure);
+      } catch (const LoadFailedElsewhere&) {
+        failure = nullptr;  // this rank is ready; the one that failed says why
+      } catch (...) {
+      }
+    }
     const std::vector<bool> ok = gather_flags(!failure);
     const Ranks& r = ranks();
     if (failure && r.root()) std::rethrow_exception(failure);
@@ -138,7 +178,7 @@ class RankFrameSpread final : public FrameSpread {
   }
 
  private:
-  InputAgreement input_;
+  InputGate gate_;
   bool stats_;
   WorkShare share_;
   FrameShare share_of_frame_;

@@ -29,7 +29,9 @@ class FrameSpread {
   // and returns the failure to go on with (this one's, or the disagreement).
   virtual std::exception_ptr after_load(std::exception_ptr failure) = 0;
   // Whether every process loaded the scene (`ok`: this one did); prepare's
-  // shared BVH builds start only then.
+  // shared BVH builds start only then. An implementation may answer `ok`
+  // at once and check the others at prepare's first exchange (which then
+  // throws) or in agree_ready, so that no process waits here.
   virtual bool all_loaded(bool ok) = 0;
   // After prepare: returns when every process has its scene ready, else
   // throws (this process's failure, or one naming the process that failed).

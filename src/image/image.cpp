@@ -9,6 +9,7 @@
 #include "rayform/image/stb_writer.h"
 #include "rayform/base/error.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -33,8 +34,21 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
   in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
   bytes.resize(size_t(in.gcount()));
   if (decodes_in_memory(bytes.data(), bytes.size())) {
-    if (bytes.size() == sniff_bytes)
-      bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (bytes.size() == sniff_bytes) {
+      // The rest in reads of the size the file has (a read past it finds the end),
+      // not a character at a time.
+      std::error_code size_ec;
+      const uint64_t file_bytes = fs::file_size(path, size_ec);
+      size_t have = bytes.size();
+      size_t step = size_ec || file_bytes <= have ? size_t(64 * 1024) : size_t(file_bytes - have + 1);
+      while (in) {
+        bytes.resize(have + step);
+        in.read(reinterpret_cast<char*>(bytes.data()) + have, std::streamsize(step));
+        have += size_t(in.gcount());
+        step = std::max(step, have);  // grows geometrically when the file grew
+      }
+      bytes.resize(have);
+    }
     if (in.bad()) throw Error(path + ": cannot read image file");
     return decode_image_memory(bytes.data(), bytes.size(), path, options);
   }

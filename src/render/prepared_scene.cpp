@@ -3,6 +3,7 @@
 #include "rayform/accel/duplicate_triangles.h"
 #include "rayform/image/image.h"
 #include "rayform/render/pbr_brdf.h"
+#include "rayform/render/texture_decode_share.h"
 #include "rayform/scene/mesh_tangents.h"
 
 #include <tbb/parallel_for.h>
@@ -298,12 +299,8 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
       to_decode.push_back({face, &p.cube_map[i]});
     }
   }
-  // Decode the used textures and cube-map faces in parallel (PNG/JPEG decoding
-  // dominates preparation of textured scenes).
-  tbb::parallel_for(size_t(0), to_decode.size(), [&](size_t j) {
-    *to_decode[j].second =
-        decode_texture(scene.textures[to_decode[j].first], DecodeOptions{options.limits.texture_texels});
-  });
+  // The used textures and cube-map faces, shared among the parts of a shared prepare.
+  decode_textures(scene, to_decode, DecodeOptions{options.limits.texture_texels}, options.share);
   check_cube_map_faces(p);
   return p;
 }

@@ -79,7 +79,8 @@ struct PrepareOptions {
   // When shared (the ranks of a frame spread over MPI ranks), the BVHs of
   // meshes of at least bvh.share_min_triangles are built shared among its
   // parts (build_mesh_accel), one after another in mesh order: every part
-  // must prepare the same scene with the same options.
+  // must prepare the same scene with the same options; then the textures
+  // and cube-map faces are decoded shared too (texture_decode_share.h).
   const WorkShare* share = nullptr;
   // BVHs kept from the previous frame (render/mesh_accel_cache.h): a used
   // mesh the cache holds an equal mesh's BVH for takes it instead of a

@@ -280,6 +280,102 @@ TEST(Prepare, UnusedTexturesAreNotDecoded) {
   EXPECT_THROW(prepare_scene(s), Error);
 }
 
+// A textured sphere under a cube map of 4x4 faces: the images a shared
+// prepare's parts decode, each its share, and exchange once.
+Scene textured_scene_with_cube_map() {
+  Scene s = scene_with({shape_node(ShapeKind::sphere, 0, 0)});
+  s.spheres.push_back({});
+  s.textures.push_back(embedded_texture());
+  s.textures[0].srgb = true;
+  for (int f = 0; f < 6; ++f) {
+    Texture t;
+    t.width = t.height = 4;
+    t.channels = f % 2 ? 4 : 3;
+    for (int i = 0; i < 16 * t.channels; ++i) t.pixels.push_back(uint8_t(f * 40 + i * 3));
+    t.srgb = f < 3;
+    s.background.cube_map[size_t(f)] = int(s.textures.size());
+    s.textures.push_back(t);
+  }
+  s.materials.resize(1);
+  s.materials[0].diffuse_texture = 0;
+  return s;
+}
+
+bool same_image(const TextureImage& a, const TextureImage& b) {
+  return a.width == b.width && a.height == b.height && a.rgba8 == b.rgba8 && a.rgbaf == b.rgbaf &&
+         a.to_linear == b.to_linear && a.wrap_u == b.wrap_u && a.wrap_v == b.wrap_v && a.filter == b.filter &&
+         a.lookup == b.lookup;
+}
+
+// Each part of a shared prepare runs `prepare` on its own thread; returns
+// each part's exception message ("" when it did not throw).
+std::vector<std::string> prepare_shared(const Scene& s, int parts, test::ThreadExchange& ex,
+                                        std::vector<PreparedScene>& prepared) {
+  prepared.assign(size_t(parts), PreparedScene{});
+  std::vector<std::string> errors(static_cast<size_t>(parts));
+  std::vector<std::thread> threads;
+  for (int p = 0; p < parts; ++p)
+    threads.emplace_back([&, p] {
+      const WorkShare share = ex.share(p);
+      PrepareOptions po;
+      po.share = &share;
+      try {
+        prepared[size_t(p)] = prepare_scene(s, po);
+      } catch (const Error& e) {
+        errors[size_t(p)] = e.what();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  return errors;
+}
+
+TEST(Prepare, SharedPreparesDecodeTheTexturesAndCubeMapShared) {
+  const Scene s = textured_scene_with_cube_map();
+  const PreparedScene whole = prepare_scene(s);
+  ASSERT_EQ(whole.cube_map.size(), 6u);
+  ASSERT_EQ(whole.cube_map[1].width, 4);
+  for (int parts : {2, 3}) {
+    test::ThreadExchange ex(parts);
+    std::vector<PreparedScene> prepared;
+    const std::vector<std::string> errors = prepare_shared(s, parts, ex, prepared);
+    for (int p = 0; p < parts; ++p) {
+      SCOPED_TRACE(std::to_string(parts) + " parts: part " + std::to_string(p));
+      EXPECT_EQ(errors[size_t(p)], "");
+      EXPECT_EQ(ex.calls(p), 1) << "one exchange of the decoded images";
+      EXPECT_GT(ex.sent(p), size_t(2 * 4 * 4 * 4)) << "each part sends the images it decoded";
+      const PreparedScene& q = prepared[size_t(p)];
+      ASSERT_EQ(q.textures.size(), whole.textures.size());
+      EXPECT_TRUE(same_image(q.textures[0], whole.textures[0]));
+      ASSERT_EQ(q.cube_map.size(), 6u);
+      for (size_t f = 0; f < 6; ++f) EXPECT_TRUE(same_image(q.cube_map[f], whole.cube_map[f])) << "face " << f;
+      EXPECT_TRUE(q.features.cube_map);
+      EXPECT_EQ(q.memory_bytes(), whole.memory_bytes());
+    }
+  }
+}
+
+TEST(Prepare, AFaceThatFailsToDecodeInASharedPrepareFailsEveryPartAlike) {
+  Scene s = textured_scene_with_cube_map();
+  s.textures[4].pixels.clear();
+  s.textures[4].path = "/nonexistent/face.png";  // face 3: decoded by part 0 of 2, part 1 of 3
+  std::string alone;
+  try {
+    prepare_scene(s);
+  } catch (const Error& e) {
+    alone = e.what();
+  }
+  ASSERT_NE(alone.find("/nonexistent/face.png"), std::string::npos) << alone;
+  for (int parts : {2, 3}) {
+    test::ThreadExchange ex(parts);
+    std::vector<PreparedScene> prepared;
+    const std::vector<std::string> errors = prepare_shared(s, parts, ex, prepared);
+    for (int p = 0; p < parts; ++p) {
+      EXPECT_EQ(errors[size_t(p)], alone) << parts << " parts: part " << p;
+      EXPECT_EQ(ex.calls(p), 1) << parts << " parts: part " << p;
+    }
+  }
+}
+
 TEST(Prepare, CourseSceneWithAnUnusedBrokenTexture) {
   auto dir = test::temp_dir("prepare_tex");
   write_file(dir / "broken.bmp", "this is not a picture");
