@@ -18,12 +18,30 @@ uint32_t le32(const uint8_t* p) {
 // besides what its pixels need: more is refused.
 constexpr uint64_t metadata_bytes = uint64_t(64) << 20;
 
-bool read_at(std::istream& in, uint64_t at, uint8_t* to, size_t n) {
-  in.clear();
-  in.seekg(std::streamoff(at));
-  in.read(reinterpret_cast<char*>(to), std::streamsize(n));
-  return size_t(in.gcount()) == n;
-}
+// Reads of a few bytes at increasing offsets, served from a block of the
+// file (a seek for each would make a walk over millions of empty chunks slow).
+class BlockReader {
+ public:
+  explicit BlockReader(std::istream& in) : in_(in), block_(64 * 1024) {}
+  bool read_at(uint64_t at, uint8_t* to, size_t n) {
+    if (at < start_ || at + n > start_ + size_) {
+      in_.clear();
+      in_.seekg(std::streamoff(at));
+      in_.read(reinterpret_cast<char*>(block_.data()), std::streamsize(block_.size()));
+      start_ = at;
+      size_ = size_t(in_.gcount());
+      if (n > size_) return false;
+    }
+    std::memcpy(to, block_.data() + (at - start_), n);
+    return true;
+  }
+
+ private:
+  std::istream& in_;
+  std::vector<uint8_t> block_;
+  uint64_t start_ = 0;
+  size_t size_ = 0;
+};
 
 std::string past_need(const char* format, uint64_t need, const char* end) {
   return std::string("no ") + end + " within the " + std::to_string(need) + " bytes a " + format +
@@ -33,16 +51,15 @@ std::string past_need(const char* format, uint64_t need, const char* end) {
 // PNG: signature, then chunks (length, type, data, CRC) up to IEND. The
 // chunks before IEND may take at most twice the image's filtered rows (their
 // size as deflate's stored blocks, with room to spare) plus metadata_bytes.
-void png_extent(std::istream& in, ImageExtent* e) {
+void png_extent(BlockReader& in, ImageExtent* e) {
   uint64_t at = 8, need = metadata_bytes;
   uint8_t h[8 + 13];
   while (true) {
-    if (at + 12 > e->file_bytes || !read_at(in, at, h, 8)) {
-      e->problem = "the file ends before the PNG's IEND chunk";
-      return;
+    if (at + 12 > e->file_bytes || !in.read_at(at, h, 8)) {
+      return;  // no IEND: the whole file, for the decoder to judge
     }
     const uint64_t length = be32(h);
-    if (std::memcmp(h + 4, "IHDR", 4) == 0 && at == 8 && length == 13 && read_at(in, at + 8, h + 8, 13)) {
+    if (std::memcmp(h + 4, "IHDR", 4) == 0 && at == 8 && length == 13 && in.read_at(at + 8, h + 8, 13)) {
       const uint64_t w = be32(h + 8), height = be32(h + 12), depth = h[16], type = h[17];
       const uint64_t samples = type == 2 ? 3 : type == 4 ? 2 : type == 6 ? 4 : 1;
       need += 2 * height * (1 + (w * samples * depth + 7) / 8) + 2 * 7 * height;  // (interlaced: 7 passes)
@@ -64,7 +81,7 @@ void png_extent(std::istream& in, ImageExtent* e) {
 // until EOI. At most 16 bytes a sample (a baseline block takes at most ~3.3
 // bytes a sample, doubled by byte stuffing; progressive refinement scans add
 // less again) plus metadata_bytes.
-void jpeg_extent(std::istream& in, ImageExtent* e) {
+void jpeg_extent(BlockReader& in, std::istream& stream, ImageExtent* e) {
   uint64_t at = 2, need = metadata_bytes;
   std::vector<uint8_t> block(64 * 1024);
   uint8_t h[10];
@@ -73,9 +90,8 @@ void jpeg_extent(std::istream& in, ImageExtent* e) {
       e->problem = past_need("JPEG", need, "EOI marker");
       return;
     }
-    if (!read_at(in, at, h, 2) || h[0] != 0xFF) {
-      e->problem = "the file ends before the JPEG's EOI marker";
-      return;
+    if (!in.read_at(at, h, 2) || h[0] != 0xFF) {
+      return;  // no EOI: the whole file, for the decoder to judge
     }
     const uint8_t marker = h[1];
     if (marker == 0xFF) {  // fill byte
@@ -90,13 +106,12 @@ void jpeg_extent(std::istream& in, ImageExtent* e) {
       at += 2;
       continue;
     }
-    if (!read_at(in, at + 2, h + 2, 2)) {
-      e->problem = "the file ends before the JPEG's EOI marker";
-      return;
+    if (!in.read_at(at + 2, h + 2, 2)) {
+      return;  // no EOI: the whole file, for the decoder to judge
     }
     const uint64_t length = uint64_t(h[2]) << 8 | h[3];
     const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
-    if (sof && read_at(in, at + 4, h + 4, 6))
+    if (sof && in.read_at(at + 4, h + 4, 6))
       need += 16 * (uint64_t(h[5]) << 8 | h[6]) * (uint64_t(h[7]) << 8 | h[8]) * h[9];
     at += 2 + length;
     if (marker != 0xDA) continue;
@@ -104,12 +119,11 @@ void jpeg_extent(std::istream& in, ImageExtent* e) {
     bool found = false;
     while (!found) {
       if (at > need) break;
-      in.clear();
-      in.seekg(std::streamoff(at));
-      in.read(reinterpret_cast<char*>(block.data()), std::streamsize(block.size()));
-      const size_t n = size_t(in.gcount());
+      stream.clear();
+      stream.seekg(std::streamoff(at));
+      stream.read(reinterpret_cast<char*>(block.data()), std::streamsize(block.size()));
+      const size_t n = size_t(stream.gcount());
       if (n < 2) {
-        e->problem = "the file ends before the JPEG's EOI marker";
         return;
       }
       size_t i = 0;
@@ -125,9 +139,9 @@ void jpeg_extent(std::istream& in, ImageExtent* e) {
 }
 
 // WebP: "RIFF", the size of what follows, "WEBP"; the RIFF chunk is the file.
-void webp_extent(std::istream& in, ImageExtent* e) {
+void webp_extent(BlockReader& in, ImageExtent* e) {
   uint8_t h[8];
-  if (!read_at(in, 0, h, 8)) return;
+  if (!in.read_at(0, h, 8)) return;
   const uint64_t size = 8 + uint64_t(le32(h + 4)) + (le32(h + 4) & 1);
   if (size > e->file_bytes)
     e->problem = "the file is truncated (its RIFF header declares " + std::to_string(size) + " bytes, the file has " +
@@ -140,17 +154,21 @@ void webp_extent(std::istream& in, ImageExtent* e) {
 ImageExtent image_extent(std::istream& in, uint64_t file_bytes) {
   ImageExtent e;
   e.file_bytes = e.bytes = file_bytes;
+  BlockReader blocks(in);
   uint8_t head[256];
-  const size_t n = read_at(in, 0, head, sizeof head) ? sizeof head : size_t(in.gcount());
+  in.clear();
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  const size_t n = size_t(in.gcount());
   if (is_png(head, n)) {
     e.format = "PNG";
-    png_extent(in, &e);
+    png_extent(blocks, &e);
   } else if (is_jpeg(head, n)) {
     e.format = "JPEG";
-    jpeg_extent(in, &e);
+    jpeg_extent(blocks, in, &e);
   } else if (is_webp(head, n)) {
     e.format = "WebP";
-    webp_extent(in, &e);
+    webp_extent(blocks, &e);
   } else if (is_simple_bmp(head, n)) {
     e.format = "BMP";
     if (const uint64_t end = simple_bmp_bytes(head, n); end != 0 && end < file_bytes) e.bytes = end;

@@ -5,7 +5,8 @@
 // after its last pixel row. Chunks and segments are walked without reading
 // their data (JPEG's entropy-coded data is scanned for its markers), and the
 // walk stops, refusing the file, once it passes what an image of the size the
-// header declares can need (image_extent.cpp states each bound). Other
+// header declares can need (image_extent.cpp states each bound). A file that
+// ends before that end is taken whole (its decoder judges it). Other
 // formats are read by OpenImageIO from the file itself (by offsets): their
 // extent is the whole file.
 #pragma once

@@ -40,8 +40,8 @@ DecodeResult decode_webp(const uint8_t* bytes, size_t size, const DecodeOptions&
   const uint64_t riff = 8 + uint64_t(bytes[4] | bytes[5] << 8 | bytes[6] << 16 | uint32_t(bytes[7]) << 24);
   WebPBitstreamFeatures features;
   if (riff > size || WebPGetFeatures(bytes, size, &features) != VP8_STATUS_OK) {
-    *error = riff > size ? "the file is truncated (its RIFF header declares " + std::to_string(riff) +
-                               " bytes, the data has " + std::to_string(size) + ")"
+    *error = riff > size ? "the WebP data is truncated (its RIFF header declares " + std::to_string(riff) +
+                               " bytes, there are " + std::to_string(size) + ")"
                          : "not a valid WebP stream";
     return DecodeResult::corrupt;
   }
