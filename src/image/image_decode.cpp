@@ -55,11 +55,17 @@ void check_texture_size(const std::string& name, uint64_t width, uint64_t height
 
 bool charge_decode(uint64_t bytes, const DecodeOptions& options, DecodedImage* out, std::string* error) {
   MemoryBudget& budget = options.memory ? *options.memory : job_memory();
-  const std::string what =
-      "decoding the " + std::to_string(out->width) + "x" + std::to_string(out->height) + " texture";
+  const uint64_t texels = uint64_t(out->width) * uint64_t(out->height), kept = texels * options.kept_bytes_per_texel;
+  const std::string what = "decoding the " + std::to_string(out->width) + "x" + std::to_string(out->height) +
+                           " texture" + (kept ? " (and keeping it as " + memory_size_text(kept) + ")" : "");
+  // The form kept must fit beside the samples: checked now, charged when made.
+  if (std::string problem = budget.problem(bytes + kept, what); !problem.empty()) {
+    *error = problem;
+    return false;
+  }
   try {
     out->memory = budget.charge(bytes, what);
-  } catch (const Error& e) {
+  } catch (const Error& e) {  // (another thread took what was left)
     *error = e.what();
     return false;
   }

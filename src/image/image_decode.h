@@ -30,6 +30,10 @@ struct DecodeOptions {
   // Charged with the decoded samples (and a decoder's own buffers) after the
   // header is read and before they are allocated; nullptr: job_memory().
   MemoryBudget* memory = nullptr;
+  // Bytes a texel the caller makes of the samples while they are held
+  // (decode_texture: 4, RGBA8): checked with the samples' charge, so that a
+  // texture whose two forms cannot fit is refused before it is decoded.
+  uint64_t kept_bytes_per_texel = 0;
 };
 
 // Samples as the file stores them: bits 8 (uint8), 16 (uint16, native byte

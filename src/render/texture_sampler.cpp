@@ -31,7 +31,11 @@ TextureImage decode_texture(const Texture& texture, const DecodeOptions& options
   MemoryBudget& budget = options.memory ? *options.memory : job_memory();
   auto name = [&] { return texture.path.empty() ? "texture '" + texture.name + "'" : texture.path; };
   auto size_text = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
-  if (texture.pixels.empty()) file = read_image_file(texture.path, options);
+  if (texture.pixels.empty()) {
+    DecodeOptions kept = options;
+    kept.kept_bytes_per_texel = 4;  // RGBA8 at least (float RGBA: 16)
+    file = read_image_file(texture.path, kept);
+  }
   if (!texture.pixels.empty() || file.bits == 8) {
     for (int v = 0; v < 256; ++v) t.to_linear[v] = texture.srgb ? srgb_to_linear(v / 255.f) : v / 255.f;
     const uint8_t* src = texture.pixels.empty() ? file.bytes.data() : texture.pixels.data();

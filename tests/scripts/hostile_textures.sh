@@ -6,7 +6,7 @@
 #  - an 8x8 PNG followed by 200 MB of zeros (sparse): render reads to IEND,
 #    convert copies the PNG without the zeros and says so;
 #  - three 260 kB palette PNGs of 16384x16384 (deflate's ratio, each within
-#    the texel limit): refused by --limit memory=1G, not decoded all;
+#    the texel limit): refused by --limit memory=1G before one is decoded;
 #  - a float RGB TIFF of 8192x8192 (zip, ~0.9 MB; needs oiiotool): refused
 #    by the memory limit before OpenImageIO decodes it;
 #  - a 70-byte lossless WebP declaring 16384x16384, and a PNG declaring
@@ -66,7 +66,7 @@ grep -q "texture 'trailing.png': 209715200 bytes after the PNG image's end (IEND
   || fail trailing-convert "expected the note on the ignored bytes, got: $(cat stderr)"
 
 scene three big1.png big2.png big3.png
-refused three-bombs "big[123]\.png: decoding the 16384x16384 texture needs 805 MB, more than the .* left of the memory limit of 1\.00 GB \(raise it with --limit memory=N\)$" \
+refused three-bombs "big[123]\.png: decoding the 16384x16384 texture \(and keeping it as 1\.07 GB\) needs 1\.88 GB, more than the .*memory limit of 1\.00 GB \(raise it with --limit memory=N\)$" \
   render three.obj -o three.png --size 16x16 --limit memory=1G
 [ -e three.png ] && fail three-bombs "three.png written"
 
