@@ -3,6 +3,8 @@
 #include "course_args.h"
 #include "messages.h"
 
+#include "rayform/base/memory_budget.h"
+
 namespace rayform::cli {
 
 namespace {
@@ -21,7 +23,8 @@ void add_read_flags(CLI::App& command, ReadFlags& flags) {
                          "; defaults: triangles and vertices " + std::to_string(defaults.triangles) + ", instances " +
                          std::to_string(defaults.instances) + ", texture-texels " +
                          std::to_string(defaults.texture_texels) + " (each side at most its square root), json-depth " +
-                         std::to_string(defaults.json_depth) + ")");
+                         std::to_string(defaults.json_depth) + ", memory " + memory_size_text(defaults.memory) +
+                         " (bytes the job may hold at once: 1/16 of this machine's memory))");
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
                    "out or URIs other than data:)");
@@ -41,6 +44,7 @@ void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
     if (std::string problem = set_limit(options.limits, l.substr(0, eq), l.substr(eq + 1)); !problem.empty())
       throw UsageError("--" + problem);
   }
+  job_memory().set_limit(options.limits.memory);
   options.access.confine = flags.confine;
   set_quiet(quiet_requested(flags));
 }

@@ -1,6 +1,8 @@
 #include "rayform/importers/texture_files.h"
 
 #include "rayform/image/image.h"
+#include "rayform/image/image_extent.h"
+#include "rayform/base/memory_budget.h"
 #include "rayform/base/error.h"
 #include "rayform/base/file_extension.h"
 
@@ -31,6 +33,24 @@ std::vector<uint8_t> read_file_bytes(const std::string& path) {
   return bytes;
 }
 
+std::vector<uint8_t> read_image_bytes(const std::string& path, std::string* note) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const uint64_t file_bytes = fs::file_size(path, ec);
+  if (!in || ec) throw Error(path + ": cannot open file");
+  const ImageExtent extent = image_extent(in, file_bytes);
+  if (!extent.problem.empty()) throw Error(path + ": cannot copy image: " + extent.problem);
+  if (note) *note = trailing_bytes_note(extent);
+  // Charged while read: refused when more than is left of the memory limit.
+  const MemoryCharge charge = job_memory().charge(extent.bytes, path + ": copying the image file");
+  std::vector<uint8_t> bytes(size_t(extent.bytes));
+  in.clear();
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+  if (size_t(in.gcount()) != bytes.size()) throw Error(path + ": cannot read file");
+  return bytes;
+}
+
 Pixels8 texture_pixels(const Texture& t) {
   Pixels8 p;
   if (!t.pixels.empty()) {
@@ -47,6 +67,7 @@ Pixels8 texture_pixels(const Texture& t) {
   // Decoded as the renderer decodes it (image.h: libpng, libjpeg-turbo,
   // libwebp, our BMP reader, else OpenImageIO), under the default size limit.
   DecodedImage d = read_image_file(t.path);
+  // (the pixels made of the decoded samples are charged with them: d.memory is held until they are made)
   p.width = d.width;
   p.height = d.height;
   p.channels = std::min(d.channels, 4);
@@ -95,7 +116,8 @@ std::vector<uint8_t> encode_bmp(const Pixels8& p) {
   return out;
 }
 
-std::vector<uint8_t> texture_file(const Texture& t, const std::vector<std::string>& wanted, std::string* ext) {
+std::vector<uint8_t> texture_file(const Texture& t, const std::vector<std::string>& wanted, std::string* ext,
+                                  std::string* note) {
   if (!t.path.empty()) {
     std::string e = lower_extension(t.path);
     if (!e.empty()) e = e.substr(1);
@@ -103,7 +125,7 @@ std::vector<uint8_t> texture_file(const Texture& t, const std::vector<std::strin
     std::error_code ec;
     if (std::find(wanted.begin(), wanted.end(), e) != wanted.end() && fs::is_regular_file(t.path, ec)) {
       *ext = e;
-      return read_file_bytes(t.path);
+      return read_image_bytes(t.path, note);
     }
   }
   Pixels8 p = texture_pixels(t);

@@ -29,7 +29,11 @@ Pixels8 texture_pixels(const Texture& texture);
 // without the dot: "png", "jpg", "bmp"): its own file's bytes when that file
 // has one of them (no re-encoding), else its pixels encoded as wanted[0]
 // (png or bmp; bmp drops alpha). `ext` receives the extension used.
-std::vector<uint8_t> texture_file(const Texture& texture, const std::vector<std::string>& wanted, std::string* ext);
+// A file's bytes are read up to the image's end (image_extent.h: a PNG's
+// IEND, a JPEG's EOI, ...), charged to job_memory(); `note`, when given,
+// receives "" or what after that end was left out.
+std::vector<uint8_t> texture_file(const Texture& texture, const std::vector<std::string>& wanted, std::string* ext,
+                                  std::string* note = nullptr);
 
 // PNG / BMP encoding of 8-bit pixels (BMP: 3 channels, alpha dropped).
 std::vector<uint8_t> encode_png(const Pixels8& p);
@@ -37,5 +41,7 @@ std::vector<uint8_t> encode_bmp(const Pixels8& p);
 
 // A whole file's bytes. Throws rayform::Error naming the file.
 std::vector<uint8_t> read_file_bytes(const std::string& path);
+// An image file's bytes up to the image's end (image_extent.h); `note` as texture_file's.
+std::vector<uint8_t> read_image_bytes(const std::string& path, std::string* note = nullptr);
 
 }  // namespace rayform

@@ -2,6 +2,7 @@
 
 #include "rayform/importers/gltf/gltf_accessors.h"
 #include "rayform/importers/gltf/gltf_messages.h"
+#include "rayform/base/error.h"
 #include "rayform/image/image_decode.h"
 
 // Debian's tinygltf is a prebuilt library: never define TINYGLTF_IMPLEMENTATION here.
@@ -40,6 +41,7 @@ std::string decode_image(tinygltf::Image& image, int index, const std::vector<un
   DecodedImage decoded;
   std::string why;
   const DecodeResult r = decode_image_bytes(bytes.data(), bytes.size(), options, &decoded, &why);
+  if (r == DecodeResult::over_budget) throw Error(image_name(image, index) + ": " + why);  // (memory_budget.h)
   if (r != DecodeResult::ok || decoded.bits == 32) {
     if (r == DecodeResult::too_large)
       why = texture_size_message(uint64_t(decoded.width), uint64_t(decoded.height), 4, options);

@@ -45,8 +45,10 @@ int GltfWriter::add_texture(int ti) {
   const Texture& t = scene_.textures[size_t(ti)];
   std::string ext;
   std::vector<uint8_t> bytes;
+  std::string trailing;
   try {
-    bytes = texture_file(t, {"png", "jpg"}, &ext);
+    bytes = texture_file(t, {"png", "jpg"}, &ext, &trailing);
+    if (!trailing.empty()) context_.note(std::string("texture '") + t.name + "': " + trailing);
   } catch (const Error& e) {
     context_.note(std::string("texture '") + t.name + "' cannot be read (" + e.what() +
                   "); materials using it are untextured");

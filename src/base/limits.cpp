@@ -1,7 +1,9 @@
 #include "rayform/base/limits.h"
 
+#include <algorithm>
 #include <cctype>
 #include <limits>
+#include <unistd.h>
 
 namespace rayform {
 namespace {
@@ -19,9 +21,19 @@ constexpr NamedLimit named_limits[] = {
     {"instances", &Limits::instances, unbounded},
     {"texture-texels", &Limits::texture_texels, unbounded},
     {"json-depth", &Limits::json_depth, max_json_depth},
+    {"memory", &Limits::memory, unbounded},
 };
 // clang-format on
 }  // namespace
+
+uint64_t default_memory_limit() {
+  static const uint64_t bytes = [] {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page <= 0) return uint64_t(1) << 30;
+    return std::max(uint64_t(pages) * uint64_t(page) / 16, uint64_t(256) << 20);
+  }();
+  return bytes;
+}
 
 std::string limit_names() {
   std::string out;

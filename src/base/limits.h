@@ -15,6 +15,10 @@ namespace rayform {
 // frames are larger still).
 inline constexpr uint64_t max_json_depth = 1024;
 
+// The default of Limits::memory: a sixteenth of the machine's physical
+// memory (sysconf), at least 256 MiB; 1 GiB when unknown. memory_budget.h says why.
+uint64_t default_memory_limit();
+
 struct Limits {
   uint64_t triangles = uint64_t(1) << 27;       // in all meshes of a scene, each mesh counted once
   uint64_t vertices = uint64_t(1) << 27;        // in all meshes of a scene; also any glTF accessor without data
@@ -22,6 +26,7 @@ struct Limits {
   uint64_t texture_texels = uint64_t(1) << 28;  // width x height of one texture, read from its header; each
                                                 // side at most the square root (16384)
   uint64_t json_depth = 512;                    // nesting of arrays and objects in a glTF's JSON
+  uint64_t memory = default_memory_limit();     // bytes one job may hold at once (memory_budget.h)
 };
 
 // The names `--limit` accepts, in the order of the struct, separated by ", ".

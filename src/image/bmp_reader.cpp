@@ -64,6 +64,13 @@ bool is_simple_bmp(const uint8_t* bytes, size_t size) {
   return simple_bmp_layout(bytes, size, &l);
 }
 
+uint64_t simple_bmp_bytes(const uint8_t* bytes, size_t size) {
+  BmpLayout l;
+  if (!simple_bmp_layout(bytes, size, &l) || l.width <= 0) return 0;
+  const uint64_t rows = uint64_t(l.height < 0 ? -l.height : l.height);
+  return l.pixel_offset + (uint64_t(l.width) * (l.bits / 8) + 3) / 4 * 4 * rows;
+}
+
 DecodeResult decode_bmp(const uint8_t* b, size_t size, const DecodeOptions& options, DecodedImage* out,
                         std::string* error) {
   BmpLayout l;
@@ -100,6 +107,7 @@ DecodeResult decode_bmp(const uint8_t* b, size_t size, const DecodeOptions& opti
     return DecodeResult::corrupt;
   }
   const size_t c = size_t(out->channels);
+  if (!charge_decode(width * rows * c, options, out, error)) return DecodeResult::over_budget;
   out->bytes.resize(size_t(width) * rows * c);
   uint8_t alpha_seen = 0;
   for (uint64_t y = 0; y < rows; ++y) {

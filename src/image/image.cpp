@@ -2,6 +2,7 @@
 
 #include "rayform/image/exr_writer.h"
 #include "rayform/image/header_check.h"
+#include "rayform/image/image_extent.h"
 #include "rayform/image/image_file.h"
 #include "rayform/image/interrupt_cleanup.h"
 #include "rayform/image/oiio_plugin.h"
@@ -34,23 +35,29 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
   in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
   bytes.resize(size_t(in.gcount()));
   if (decodes_in_memory(bytes.data(), bytes.size())) {
-    if (bytes.size() == sniff_bytes) {
-      // The rest in reads of the size the file has (a read past it finds the end),
-      // not a character at a time.
-      std::error_code size_ec;
-      const uint64_t file_bytes = fs::file_size(path, size_ec);
-      size_t have = bytes.size();
-      size_t step = size_ec || file_bytes <= have ? size_t(64 * 1024) : size_t(file_bytes - have + 1);
-      while (in) {
-        bytes.resize(have + step);
-        in.read(reinterpret_cast<char*>(bytes.data()) + have, std::streamsize(step));
-        have += size_t(in.gcount());
-        step = std::max(step, have);  // grows geometrically when the file grew
-      }
-      bytes.resize(have);
+    // Up to the image's end (image_extent.h), not what follows it; charged
+    // while it is decoded.
+    std::error_code size_error;
+    const uint64_t file_bytes = fs::file_size(path, size_error);
+    MemoryCharge file_memory;
+    std::string note;
+    if (bytes.size() == sniff_bytes && !size_error) {
+      const ImageExtent extent = image_extent(in, file_bytes);
+      if (!extent.problem.empty()) throw Error(path + ": cannot decode image: " + extent.problem);
+      note = trailing_bytes_note(extent);
+      file_memory = (options.memory ? *options.memory : job_memory()).charge(extent.bytes, path + ": reading the file");
+      bytes.resize(size_t(extent.bytes));
+      in.clear();
+      in.seekg(0);
+      in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+      if (size_t(in.gcount()) != bytes.size()) throw Error(path + ": cannot read image file");
+    } else if (bytes.size() == sniff_bytes) {  // (not a regular file: read to its end)
+      bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
     if (in.bad()) throw Error(path + ": cannot read image file");
-    return decode_image_memory(bytes.data(), bytes.size(), path, options);
+    DecodedImage d = decode_image_memory(bytes.data(), bytes.size(), path, options);
+    d.note = std::move(note);
+    return d;
   }
   // Every other format rayform reads (tga, hdr, exr, tif, gif, pnm, psd):
   // OpenImageIO's reader for it, once the headers it trusts too far are

@@ -53,6 +53,25 @@ void check_texture_size(const std::string& name, uint64_t width, uint64_t height
     throw Error(name + ": " + texture_size_message(width, height, bytes_per_texel, options));
 }
 
+bool charge_decode(uint64_t bytes, const DecodeOptions& options, DecodedImage* out, std::string* error) {
+  MemoryBudget& budget = options.memory ? *options.memory : job_memory();
+  const uint64_t texels = uint64_t(out->width) * uint64_t(out->height), kept = texels * options.kept_bytes_per_texel;
+  const std::string what = "decoding the " + std::to_string(out->width) + "x" + std::to_string(out->height) +
+                           " texture" + (kept ? " (and keeping it as " + memory_size_text(kept) + ")" : "");
+  // The form kept must fit beside the samples: checked now, charged when made.
+  if (std::string problem = budget.problem(bytes + kept, what); !problem.empty()) {
+    *error = problem;
+    return false;
+  }
+  try {
+    out->memory = budget.charge(bytes, what);
+  } catch (const Error& e) {  // (another thread took what was left)
+    *error = e.what();
+    return false;
+  }
+  return true;
+}
+
 bool decodes_in_memory(const uint8_t* bytes, size_t size) {
   return is_png(bytes, size) || is_jpeg(bytes, size) || is_webp(bytes, size) || is_simple_bmp(bytes, size);
 }
@@ -75,6 +94,7 @@ DecodedImage decode_image_memory(const uint8_t* bytes, size_t size, const std::s
   if (r == DecodeResult::too_large)
     throw Error(name + ": " +
                 texture_size_message(uint64_t(out.width), uint64_t(out.height), out.bits == 8 ? 4 : 16, options));
+  if (r == DecodeResult::over_budget) throw Error(name + ": " + error);
   if (r != DecodeResult::ok) throw Error(name + ": cannot decode image: " + error);
   return out;
 }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "rayform/base/limits.h"
+#include "rayform/base/memory_budget.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -26,6 +27,13 @@ struct DecodeOptions {
   // default is Limits::texture_texels (base/limits.h: 2^28, 16384 x 16384,
   // the largest texture a GPU accepts; 1 GiB as RGBA8).
   uint64_t max_texels = Limits{}.texture_texels;
+  // Charged with the decoded samples (and a decoder's own buffers) after the
+  // header is read and before they are allocated; nullptr: job_memory().
+  MemoryBudget* memory = nullptr;
+  // Bytes a texel the caller makes of the samples while they are held
+  // (decode_texture: 4, RGBA8): checked with the samples' charge, so that a
+  // texture whose two forms cannot fit is refused before it is decoded.
+  uint64_t kept_bytes_per_texel = 0;
 };
 
 // Samples as the file stores them: bits 8 (uint8), 16 (uint16, native byte
@@ -34,9 +42,16 @@ struct DecodeOptions {
 struct DecodedImage {
   int width = 0, height = 0, channels = 0, bits = 8;
   std::vector<uint8_t> bytes;  // width * height * channels * bits / 8
+  MemoryCharge memory;         // what decoding charged (memory_budget.h): kept while `bytes` are
+  std::string note;            // read_image_file: "" or what of the file was ignored (image_extent.h)
 };
 
-enum class DecodeResult { ok, corrupt, too_large };
+// over_budget: the samples would pass the memory limit (*error says how much).
+enum class DecodeResult { ok, corrupt, too_large, over_budget };
+
+// Charges `bytes` for decoding a width x height texture to options.memory (or
+// job_memory()) into out->memory; false with *error set when over the limit.
+bool charge_decode(uint64_t bytes, const DecodeOptions& options, DecodedImage* out, std::string* error);
 
 // The longest side a texture may have: the side of a square of max_texels
 // (16384 by default). Readers allocate by the width (OpenImageIO's EXR read

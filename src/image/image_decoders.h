@@ -20,6 +20,8 @@ bool is_jpeg(const uint8_t* bytes, size_t size);
 bool is_webp(const uint8_t* bytes, size_t size);
 // A BMP that bmp_reader.cpp decodes (uncompressed 24/32-bit); other BMPs go to OpenImageIO.
 bool is_simple_bmp(const uint8_t* bytes, size_t size);
+// Where such a BMP's last pixel row ends (its header's offset + rows x stride); 0 when not one.
+uint64_t simple_bmp_bytes(const uint8_t* bytes, size_t size);
 
 // On corrupt, *error says why in a few words.
 // PNG: 8-bit (palette, tRNS and 1/2/4-bit grey expanded as stb did) or 16-bit samples.

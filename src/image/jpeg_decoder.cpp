@@ -25,6 +25,7 @@ namespace rayform {
 namespace {
 
 constexpr int max_scans = 500;
+constexpr uint64_t sequential_ratio = 256;
 
 struct JpegErrors {
   jpeg_error_mgr mgr;
@@ -99,16 +100,35 @@ DecodeResult decode_jpeg(const uint8_t* bytes, size_t size, const DecodeOptions&
   out->height = int(h.cinfo.image_height);
   out->bits = 8;
   if (exceeds_texel_limit(h.cinfo.image_width, h.cinfo.image_height, options)) return DecodeResult::too_large;
+  const uint64_t texels = uint64_t(h.cinfo.image_width) * h.cinfo.image_height;
+  // Sequential Huffman-coded data takes at least 2 bits (a DC and an
+  // end-of-block code) for each 8x8 block of the full-resolution component:
+  // 256 texels a byte. Progressive and arithmetic-coded files have no such
+  // bound (a refinement scan may be missing); their coefficients are charged.
+  const bool buffered = h.cinfo.progressive_mode || h.cinfo.arith_code;
+  if (!buffered && texels > sequential_ratio * size) {
+    std::snprintf(errors.message, JMSG_LENGTH_MAX,
+                  "the header declares %ux%u texels, more than its %zu bytes can hold (sequential JPEG data holds at "
+                  "most %u texels a byte)",
+                  h.cinfo.image_width, h.cinfo.image_height, size, unsigned(sequential_ratio));
+    std::longjmp(errors.jump, 1);
+  }
 
   const bool cmyk = h.cinfo.jpeg_color_space == JCS_CMYK || h.cinfo.jpeg_color_space == JCS_YCCK;
   const bool grey = h.cinfo.jpeg_color_space == JCS_GRAYSCALE;
   h.cinfo.out_color_space = cmyk ? JCS_CMYK : grey ? JCS_GRAYSCALE : JCS_RGB;
   h.cinfo.dct_method = JDCT_ISLOW;
   h.cinfo.do_fancy_upsampling = TRUE;
+  // The samples, and a progressive file's coefficients (64 16-bit values an
+  // 8x8 block: 2 bytes a sample of each component, before subsampling).
+  if (!charge_decode(texels * (grey ? 1 : 3) + (buffered ? 2 * texels * uint64_t(h.cinfo.num_components) : 0), options,
+                     out, error))
+    return DecodeResult::over_budget;
   jpeg_start_decompress(&h.cinfo);
   out->channels = grey ? 1 : 3;
   const size_t stride = size_t(h.cinfo.output_width) * size_t(out->channels);
   if (h.cinfo.output_components != (cmyk ? 4 : out->channels)) std::longjmp(errors.jump, 1);
+
   out->bytes.resize(stride * h.cinfo.output_height);
   if (cmyk) cmyk_row.resize(size_t(h.cinfo.output_width) * 4);
   while (h.cinfo.output_scanline < h.cinfo.output_height) {

@@ -12,10 +12,12 @@ typedef int (*rayform_oiio_can_write_fn)(const char* path);
 // 8-bit unsigned) or 32 (float) samples; 0 on failure (the reason in `error`);
 // 2 when the header declares more than max_texels texels or a side longer
 // than max_side, with *width, *height, *channels and *bits set and nothing
-// read or allocated. Alpha is returned as stored (never premultiplied).
+// read or allocated; 3, the same, when the samples would take more than
+// max_bytes / 2 bytes (the caller copies them). Alpha is returned as stored
+// (never premultiplied).
 typedef int (*rayform_oiio_read_fn)(const char* path, const char* format, unsigned long long max_texels,
-                                    unsigned long long max_side, int* width, int* height, int* channels, int* bits,
-                                    void** pixels, char* error, size_t error_size);
+                                    unsigned long long max_side, unsigned long long max_bytes, int* width, int* height,
+                                    int* channels, int* bits, void** pixels, char* error, size_t error_size);
 typedef void (*rayform_oiio_free_fn)(void* pixels);
 // Writes `path` in the format named by `format_path`'s extension. 1 on success.
 typedef int (*rayform_oiio_write_fn)(const char* format_path, const char* path, int width, int height, int channels,

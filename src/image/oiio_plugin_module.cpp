@@ -22,7 +22,8 @@ void set_error(char* error, size_t size, const std::string& message) {
 
 namespace {
 int read_with_oiio(const char* path, const char* format, unsigned long long max_texels, unsigned long long max_side,
-                   int* width, int* height, int* channels, int* bits, void** pixels, char* error, size_t error_size) {
+                   unsigned long long max_bytes, int* width, int* height, int* channels, int* bits, void** pixels,
+                   char* error, size_t error_size) {
   // Alpha as the file stores it: OpenImageIO would premultiply unassociated
   // alpha (TGA, TIFF, ...) by default; textures take it as stb_image gave it.
   OIIO::ImageSpec config;
@@ -58,6 +59,7 @@ int read_with_oiio(const char* path, const char* format, unsigned long long max_
       (unsigned long long)spec.width * (unsigned long long)spec.height > max_texels)
     return 2;
   const size_t n = size_t(spec.width) * spec.height * spec.nchannels;
+  if ((unsigned long long)n * (eight ? 1 : sizeof(float)) > max_bytes / 2) return 3;
   void* data = std::malloc(n * (eight ? 1 : sizeof(float)));
   const OIIO::TypeDesc type = eight ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
   if (!data || !in->read_image(0, 0, 0, spec.nchannels, type, data)) {
@@ -78,13 +80,15 @@ __attribute__((visibility("default"))) int rayform_oiio_can_write(const char* pa
 
 // No exception crosses this C boundary: OpenImageIO's readers throw on some
 // broken files (a GIF whose frame asks for a vector longer than max_size).
-__attribute__((visibility("default"))) int rayform_oiio_read_as(const char* path, const char* format,
-                                                                unsigned long long max_texels,
-                                                                unsigned long long max_side, int* width, int* height,
-                                                                int* channels, int* bits, void** pixels, char* error,
-                                                                size_t error_size) {
+__attribute__((visibility("default"))) int rayform_oiio_read_within(const char* path, const char* format,
+                                                                    unsigned long long max_texels,
+                                                                    unsigned long long max_side,
+                                                                    unsigned long long max_bytes, int* width,
+                                                                    int* height, int* channels, int* bits,
+                                                                    void** pixels, char* error, size_t error_size) {
   try {
-    return read_with_oiio(path, format, max_texels, max_side, width, height, channels, bits, pixels, error, error_size);
+    return read_with_oiio(path, format, max_texels, max_side, max_bytes, width, height, channels, bits, pixels, error,
+                          error_size);
   } catch (const std::exception& e) {
     set_error(error, error_size, std::string("OpenImageIO failed: ") + e.what());
   } catch (...) {

@@ -9,6 +9,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 #include <vector>
@@ -16,6 +17,8 @@
 namespace rayform {
 
 namespace {
+
+constexpr uint64_t deflate_max_ratio = 1032;
 
 struct PngSource {
   const uint8_t* bytes;
@@ -39,6 +42,22 @@ void png_on_error(png_structp png, png_const_charp message) {
 }
 
 void png_on_warning(png_structp, png_const_charp) {}  // (bad ancillary chunks are skipped)
+
+uint32_t be32(const uint8_t* p) { return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3]; }
+
+// The bytes of IDAT data (compressed rows) before IEND, the chunks' lengths
+// as they lie within `size`.
+uint64_t idat_bytes(const uint8_t* bytes, size_t size) {
+  uint64_t total = 0;
+  for (size_t at = 8; at + 8 <= size;) {
+    const uint64_t length = be32(bytes + at);
+    if (std::memcmp(bytes + at + 4, "IEND", 4) == 0) break;
+    if (std::memcmp(bytes + at + 4, "IDAT", 4) == 0) total += std::min<uint64_t>(length, size - at - 8);
+    if (length > size - at - 8) break;
+    at += 12 + size_t(length);
+  }
+  return total;
+}
 
 struct PngHandles {
   png_structp png = nullptr;
@@ -77,6 +96,18 @@ DecodeResult decode_png(const uint8_t* bytes, size_t size, const DecodeOptions& 
   out->height = int(height);
   out->bits = depth == 16 ? 16 : 8;
   if (exceeds_texel_limit(width, height, options)) return DecodeResult::too_large;
+  // Deflate makes at most 1032 bytes of each byte (a 258-byte match in two
+  // bits): rows of more bytes than that (filter bytes not counted) cannot be
+  // in the file's IDAT data.
+  const uint64_t row_bits = uint64_t(width) * uint64_t(depth) * png_get_channels(h.png, h.info);
+  const uint64_t packed = (row_bits * height + 7) / 8, compressed = idat_bytes(bytes, size);
+  if (packed > deflate_max_ratio * compressed + deflate_max_ratio) {
+    *error = "the header declares " + std::to_string(width) + "x" + std::to_string(height) + " texels (" +
+             std::to_string(packed) + " bytes of rows), more than its " + std::to_string(compressed) +
+             " bytes of compressed data can hold (deflate expands at most " + std::to_string(deflate_max_ratio) +
+             " times)";
+    return DecodeResult::corrupt;
+  }
 
   if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(h.png);
   if (color_type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(h.png);
@@ -88,6 +119,8 @@ DecodeResult decode_png(const uint8_t* bytes, size_t size, const DecodeOptions& 
   const size_t row_bytes = png_get_rowbytes(h.png, h.info);
   if (out->channels < 1 || out->channels > 4 || row_bytes != size_t(width) * out->channels * (out->bits / 8))
     png_error(h.png, "unexpected sample layout");
+  if (!charge_decode(uint64_t(row_bytes) * height + uint64_t(height) * sizeof(png_bytep), options, out, error))
+    return DecodeResult::over_budget;
   out->bytes.resize(row_bytes * height);
   rows.resize(height);
   for (png_uint_32 y = 0; y < height; ++y) rows[y] = out->bytes.data() + y * row_bytes;

@@ -4,6 +4,7 @@
 #include "rayform/image/image.h"
 #include "rayform/render/pbr_brdf.h"
 #include "rayform/render/texture_decode_share.h"
+#include "rayform/render/render_memory.h"
 #include "rayform/scene/mesh_tangents.h"
 
 #include <tbb/parallel_for.h>
@@ -178,6 +179,7 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   // Build each used mesh once, however often it is instanced; in mesh order,
   // which makes the shared builds (collective) the same on every part.
   p.meshes.resize(scene.meshes.size());
+  p.memory = charge_mesh_memory(scene, mesh_used);  // (render_memory.h)
   MeshAccelCache* cache = options.share && options.share->shared() ? nullptr : options.cache;
   // Small meshes (whose builds are one task each) are built at once, large
   // ones one after another, each by parallel tasks; under a WorkShare in

@@ -108,7 +108,8 @@ struct PreparedScene {
   PrefilteredEnvironment prefiltered_environment;
   std::vector<PreparedLight> lights;  // the Scene's, in order
   SceneFeatures features;
-  Bounds3 bounds;  // of the bounded instances, world space
+  Bounds3 bounds;       // of the bounded instances, world space
+  MemoryCharge memory;  // the meshes and their BVHs, charged to job_memory() before the builds
 
   size_t memory_bytes() const;
 };

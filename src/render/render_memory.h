@@ -3,7 +3,9 @@
 // std::bad_alloc (or the machine swapping) after the scene was loaded.
 #pragma once
 
+#include "rayform/base/memory_budget.h"
 #include "rayform/render/render.h"
+#include "rayform/scene/scene.h"
 
 #include <cstdint>
 #include <string>
@@ -18,12 +20,26 @@ namespace rayform {
 uint64_t render_memory_bytes(const RenderOptions& options);
 
 // The memory the system can give this process now (Linux: MemAvailable of
-// /proc/meminfo; 0 when unknown).
+// /proc/meminfo; 0 when unknown), and no more than what is left of the job's
+// memory limit (job_memory(), memory_budget.h).
 uint64_t available_memory_bytes();
+
+// The bytes of a mesh's arrays as imported (positions, normals, uvs, ...).
+uint64_t mesh_bytes(const Mesh& mesh);
+// The bytes prepare's BVH over `triangles` takes while it is built and after
+// (mesh_accel.h's nodes, packets and triangle order, and the build's
+// per-triangle bounds and references): mesh_accel_bytes_per_triangle each.
+inline constexpr uint64_t mesh_accel_bytes_per_triangle = 160;
+// Charges job_memory() with the meshes of `scene` whose `used` entry is
+// non-zero and their BVHs, or throws rayform::Error "scene: 3 meshes of
+// 2000000 triangles and their BVHs need ... (raise it with --limit memory=N)".
+MemoryCharge charge_mesh_memory(const Scene& scene, const std::vector<uint8_t>& used);
 
 // "" when render_memory_bytes(options) fits in `available` bytes (or
 // `available` is 0: unknown), else e.g. "size: a 100000x100000 image needs
-// 560 GB for its buffers and files, more than the 21 GB of memory available".
+// 560 GB for its buffers and files, more than the 21 GB of memory available"
+// (+ " under the memory limit of 1.6 GB (raise it with --limit memory=N)" when
+// `available` is what is left of job_memory()'s limit).
 std::string render_memory_problem(const RenderOptions& options, uint64_t available);
 
 }  // namespace rayform

@@ -28,7 +28,14 @@ TextureImage decode_texture(const Texture& texture, const DecodeOptions& options
   t.filter = texture.filter;
   t.lookup = texture.lookup;
   DecodedImage file;
-  if (texture.pixels.empty()) file = read_image_file(texture.path, options);
+  MemoryBudget& budget = options.memory ? *options.memory : job_memory();
+  auto name = [&] { return texture.path.empty() ? "texture '" + texture.name + "'" : texture.path; };
+  auto size_text = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
+  if (texture.pixels.empty()) {
+    DecodeOptions kept = options;
+    kept.kept_bytes_per_texel = 4;  // RGBA8 at least (float RGBA: 16)
+    file = read_image_file(texture.path, kept);
+  }
   if (!texture.pixels.empty() || file.bits == 8) {
     for (int v = 0; v < 256; ++v) t.to_linear[v] = texture.srgb ? srgb_to_linear(v / 255.f) : v / 255.f;
     const uint8_t* src = texture.pixels.empty() ? file.bytes.data() : texture.pixels.data();
@@ -37,6 +44,7 @@ TextureImage decode_texture(const Texture& texture, const DecodeOptions& options
     t.height = texture.pixels.empty() ? file.height : texture.height;
     if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
     const size_t texels = size_t(t.width) * size_t(t.height);
+    t.memory = budget.charge(texels * 4, name() + ": the " + size_text(t.width, t.height) + " texture as RGBA8");
     if (c == 4) {  // already RGBA (glTF images): a copy
       t.rgba8.assign(src, src + texels * 4);
       return t;
@@ -47,8 +55,14 @@ TextureImage decode_texture(const Texture& texture, const DecodeOptions& options
   }
   int c = file.channels;
   if (c < 1 || c > 4) throw Error(texture.path + ": unsupported number of channels " + std::to_string(c));
+  const size_t texels = size_t(file.width) * size_t(file.height);
+  MemoryCharge float_copy =
+      budget.charge(texels * size_t(c) * sizeof(float),
+                    name() + ": the " + size_text(file.width, file.height) + " texture as floats");
   Image src = to_float_image(file);
   file = DecodedImage();
+  t.memory = budget.charge(texels * 4 * sizeof(float),
+                           name() + ": the " + size_text(src.width, src.height) + " texture as float RGBA");
   t.width = src.width;
   t.height = src.height;
   t.rgbaf.resize(size_t(t.width) * t.height * 4);

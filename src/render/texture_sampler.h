@@ -21,6 +21,7 @@ struct TextureImage {
   Texture::Wrap wrap_u = Texture::Wrap::repeat, wrap_v = Texture::Wrap::repeat;
   Texture::Filter filter = Texture::Filter::linear;
   Texture::Lookup lookup = Texture::Lookup::standard;
+  MemoryCharge memory;  // rgba8 or rgbaf, charged to DecodeOptions::memory (job_memory()) before allocation
 
   bool empty() const { return width == 0 || height == 0; }
   vec4 texel(int x, int y) const {
@@ -35,7 +36,8 @@ struct TextureImage {
 // Decodes a scene texture (sRGB-decoded to linear when srgb is set): the
 // Texture's own pixels, or its file through read_image_file (image.h).
 // Throws rayform::Error when the file cannot be read or decoded, or declares
-// more than options.max_texels texels.
+// more than options.max_texels texels, or when the texels would pass the
+// memory limit (memory_budget.h).
 TextureImage decode_texture(const Texture& texture, const DecodeOptions& options = {});
 
 // RGBA at texture coordinate uv (v = 1 is the top row of the picture).

@@ -1,0 +1,64 @@
+// The memory one job may hold at once (Limits::memory, `--limit memory=N`):
+// a running count of bytes charged before they are allocated, by the
+// textures decoded (bytes per texel by format, decoder buffers included), the
+// meshes and BVHs prepared, and the output buffers. A charge that would pass
+// the limit throws one line naming what and how much, so that several
+// textures or meshes, each within its own limit, cannot together claim the
+// machine. Each charge is held by a MemoryCharge (copies share it) that the
+// owner of the memory keeps: dropping the last copy gives the bytes back, so a
+// process that runs jobs one after another charges each only for its own.
+//
+// The default limit is a sixteenth of physical memory (limits.h): a scene
+// that a small file makes claim more is refused in a few milliseconds, while
+// the scenes rayform renders (the course's, the Khronos samples) need far
+// less; `--limit memory=N` raises it for a larger scene.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace rayform {
+
+class MemoryCharge {
+ public:
+  MemoryCharge() = default;
+  uint64_t bytes() const;
+
+ private:
+  friend class MemoryBudget;
+  struct Held;
+  std::shared_ptr<Held> held_;
+};
+
+class MemoryBudget {
+ public:
+  explicit MemoryBudget(uint64_t limit);
+  MemoryBudget(const MemoryBudget&) = delete;
+  MemoryBudget& operator=(const MemoryBudget&) = delete;
+
+  // Charges `bytes` for `what` ("the 16384x16384 texture 'wood.png'"), or
+  // throws rayform::Error "WHAT needs 1.1 GB, more than the 0.9 GB left of
+  // the memory limit of 1.5 GB (raise it with --limit memory=N)". Thread-safe.
+  MemoryCharge charge(uint64_t bytes, const std::string& what);
+  // The message charge would throw, or "" when `bytes` fit now.
+  std::string problem(uint64_t bytes, const std::string& what) const;
+
+  uint64_t limit() const;
+  void set_limit(uint64_t limit);
+  uint64_t used() const;  // charged and not yet given back
+
+ private:
+  friend class MemoryCharge;
+  struct State;
+  std::shared_ptr<State> state_;  // outlives the budget while charges hold it
+};
+
+// The budget of the job this process runs: its limit is Limits{}.memory
+// until the command line sets it (set_limit).
+MemoryBudget& job_memory();
+
+// "2.15 GB", "512 MB", "64.0 kB": decimal units, three significant digits.
+std::string memory_size_text(uint64_t bytes);
+
+}  // namespace rayform
