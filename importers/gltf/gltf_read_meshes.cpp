@@ -37,7 +37,9 @@ std::unique_ptr<GltfReader::DracoPrimitive> GltfReader::decode_draco_primitive(c
   const tinygltf::Value& attributes = e.Get("attributes");
   for (const std::string& name : attributes.Keys()) {
     const tinygltf::Value& id = attributes.Get(name);
-    if (!id.IsNumber() || id.GetNumberAsInt() < 0) fail(dw + ".attributes." + name + ": expected a Draco attribute id");
+    if (!id.IsNumber() || id.GetNumberAsInt() < 0)
+      fail(dw + ".attributes." + name + ": expected a Draco attribute id (an integer from 0 to 2147483647)" +
+           (id.IsString() ? ", got " + id.Get<std::string>() : std::string()));
     if (!prim.attributes.count(name))
       fail(dw + ".attributes." + name + ": the primitive has no accessor for this attribute");
     out->slots[name] = int(ids.size());
