@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <utility>
 
 namespace rayform {
@@ -46,6 +47,16 @@ FileBytes& FileBytes::operator=(FileBytes&& o) noexcept {
     read_ = std::move(o.read_);
   }
   return *this;
+}
+
+void FileBytes::drop_pages(size_t begin, size_t end) const {
+  if (!mapped_) return;
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  begin = (begin + page - 1) / page * page;  // the mapping starts on a page
+  end = std::min(end, size_) / page * page;
+  // MADV_DONTNEED on a private read-only mapping: the pages are read again
+  // from the file when touched, unchanged.
+  if (begin < end) ::madvise(const_cast<char*>(mapped_) + begin, end - begin, MADV_DONTNEED);
 }
 
 FileBytes::~FileBytes() {

@@ -24,6 +24,12 @@ class FileBytes {
 
   std::string_view view() const { return mapped_ ? std::string_view(mapped_, size_) : std::string_view(read_); }
 
+  // Lets the system take back the mapped pages wholly inside bytes [begin,
+  // end) of view(): they stop counting as resident, and are read again (from
+  // the page cache or the file) when next touched. Nothing for bytes that
+  // were read, not mapped.
+  void drop_pages(size_t begin, size_t end) const;
+
  private:
   const char* mapped_ = nullptr;  // the mapping, or nullptr
   size_t size_ = 0;               // its size

@@ -555,10 +555,10 @@ CourseDialect detect_course_dialect(std::string_view text, const std::string& pa
   auto cube_faces = [&](CourseDialect d) {
     return !marks.cube_map_dir.empty() && cube_map_has_faces(path, marks.cube_map_dir, access, cube_map_extension(d));
   };
-  // .bmp faces are a5's alone (2019 reads .png ones), whatever else the scene uses.
-  if (cube_faces(CourseDialect::a5)) return CourseDialect::a5;
+  // .bmp faces, Noise and refractionIndex are a5's alone (2019 reads .png
+  // faces), whatever else the scene uses: a5's point lights have falloff.
+  if (cube_faces(CourseDialect::a5) || marks.a5) return CourseDialect::a5;
   if (marks.v2019) return CourseDialect::v2019;
-  if (marks.a5) return CourseDialect::a5;
   // With a5 told apart by its .bmp faces, .png faces are 2019's.
   if (cube_faces(CourseDialect::v2019)) return CourseDialect::v2019;
   return CourseDialect::v2012;

@@ -27,9 +27,9 @@ struct CourseScene {
 };
 
 // The dialect of a scene whose command line names none: a5 if its cubeMap
-// folder holds .bmp faces; else 2019 if it uses `falloff` or `bump`; else a5
-// if it uses `Noise` or `refractionIndex`; else 2019 if its cubeMap folder
-// holds .png faces; else 2012. `path` (the scene file) anchors the cube map
+// folder holds .bmp faces or it uses `Noise` or `refractionIndex`, whether or
+// not it also uses `falloff`; else 2019 if it uses `falloff` or `bump` or its
+// cubeMap folder holds .png faces; else 2012. `path` (the scene file) anchors the cube map
 // folder as the reader resolves it.
 CourseDialect detect_course_dialect(std::string_view text, const std::string& path, const FileAccess& access = {});
 

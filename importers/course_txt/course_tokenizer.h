@@ -52,7 +52,7 @@ std::string shown(std::string_view text);
 
 // The words of a scene text that choose its dialect (course_reader.h).
 struct CourseDialectMarks {
-  bool v2019 = false;        // falloff or bump (only the 2019 dialect has them)
+  bool v2019 = false;        // falloff or bump (2019, unless an a5 mark or .bmp faces say a5)
   bool a5 = false;           // Noise or refractionIndex (assignment 5)
   std::string cube_map_dir;  // the folder after the last cubeMap, if any
 };

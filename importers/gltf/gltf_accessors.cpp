@@ -277,11 +277,15 @@ void GltfAccessors::read_elements(const tinygltf::Accessor& acc, const std::stri
   const int cs = component_size(acc.componentType);
   const size_t elem = size_t(cs) * size_t(nc);
   // Without a bufferView the elements are zeros (sparse may then set some):
-  // nothing in the file bounds the count but the limit.
+  // nothing in the file bounds the count but the limit, on all such reads.
   if (acc.bufferView == -1) {
-    if (acc.count > max_unbacked_elements_)
-      fail(aw + ": count " + std::to_string(acc.count) +
-           " without a bufferView: " + limit_exceeded("vertices", acc.count, max_unbacked_elements_));
+    if (!fits_in(unbacked_elements_, acc.count, max_unbacked_elements_)) {
+      const uint64_t total = acc.count > UINT64_MAX - unbacked_elements_ ? UINT64_MAX : unbacked_elements_ + acc.count;
+      fail(aw + ": count " + std::to_string(acc.count) + " without a bufferView" +
+           (unbacked_elements_ ? " (after " + std::to_string(unbacked_elements_) + " read before)" : std::string()) +
+           ": " + limit_exceeded("unbacked-elements", total, max_unbacked_elements_));
+    }
+    unbacked_elements_ += acc.count;
     alloc(acc.count);
   } else {
     View bytes = view(acc.bufferView, aw + ".bufferView");

@@ -61,9 +61,11 @@ const char* gltf_type_name(int type);
 class GltfAccessors {
  public:
   // `file` prefixes every error message. An accessor backed by bytes is
-  // bounded by them; one without a bufferView (zeros, perhaps with sparse
-  // values) may hold at most `max_unbacked_elements` (Limits::vertices): a
-  // 432-byte file could otherwise ask for gigabytes of zeros.
+  // bounded by them; those without a bufferView (zeros, perhaps with sparse
+  // values) may hold at most `max_unbacked_elements`
+  // (Limits::unbacked_elements) together, summed over every read (a mesh
+  // copied per morph weights reads its accessors again): a 700-byte file
+  // could otherwise ask for gigabytes of zeros.
   GltfAccessors(const tinygltf::Model& model, std::string file, uint64_t max_unbacked_elements)
       : model_(model), file_(std::move(file)), max_unbacked_elements_(max_unbacked_elements) {}
 
@@ -106,6 +108,7 @@ class GltfAccessors {
   const tinygltf::Model& model_;
   std::string file_;
   uint64_t max_unbacked_elements_;
+  uint64_t unbacked_elements_ = 0;                     // read so far, in elements
   std::map<int, std::vector<uint8_t>> decoded_views_;  // EXT_meshopt_compression, per bufferView
 };
 

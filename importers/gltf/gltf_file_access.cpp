@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cctype>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -176,6 +177,12 @@ bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb, GltfCo
       if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
       for (nlohmann::json& prim : mesh["primitives"]) {
         nlohmann::json* draco = extension(prim, "KHR_draco_mesh_compression");
+        if (draco && draco->contains("attributes") && (*draco)["attributes"].is_object())
+          for (auto& [name, id] : (*draco)["attributes"].items())
+            if (id.is_number() && !(id.is_number_unsigned() && id.get<uint64_t>() <= uint64_t(INT32_MAX))) {
+              id = id.dump();  // tinygltf would cast it to int (2^40 to 0)
+              changed = true;
+            }
         if (!draco || !prim.contains("indices")) continue;
         (*draco)[draco_indices_key] = prim["indices"];
         prim.erase("indices");

@@ -50,6 +50,10 @@ GltfContainer read_gltf_container(const std::vector<unsigned char>& bytes, bool 
 // - a KHR_draco_mesh_compression primitive's index accessor has no bufferView:
 //   the primitive's "indices" moves into its extension object (under
 //   draco_indices_key), where the reader's decode_draco_primitive finds it.
+// And one kind of invalid file that tinygltf would take for a valid one: a
+// KHR_draco_mesh_compression attribute id that is a number but not an
+// integer from 0 to 2^31 - 1 (tinygltf casts 2^40 to the int 0) becomes a
+// string of its JSON text, which decode_draco_primitive refuses, naming it.
 // `container` is read_gltf_container's of `bytes`; its json follows the JSON
 // where adapted. Returns false (bytes untouched) when the file needed neither.
 bool adapt_json_for_tinygltf(std::vector<unsigned char>& bytes, bool glb, GltfContainer& container);

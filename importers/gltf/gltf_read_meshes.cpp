@@ -37,7 +37,9 @@ std::unique_ptr<GltfReader::DracoPrimitive> GltfReader::decode_draco_primitive(c
   const tinygltf::Value& attributes = e.Get("attributes");
   for (const std::string& name : attributes.Keys()) {
     const tinygltf::Value& id = attributes.Get(name);
-    if (!id.IsNumber() || id.GetNumberAsInt() < 0) fail(dw + ".attributes." + name + ": expected a Draco attribute id");
+    if (!id.IsNumber() || id.GetNumberAsInt() < 0)
+      fail(dw + ".attributes." + name + ": expected a Draco attribute id (an integer from 0 to 2147483647)" +
+           (id.IsString() ? ", got " + id.Get<std::string>() : std::string()));
     if (!prim.attributes.count(name))
       fail(dw + ".attributes." + name + ": the primitive has no accessor for this attribute");
     out->slots[name] = int(ids.size());
@@ -116,6 +118,7 @@ const std::vector<int>& GltfReader::mesh_shapes(int mi, const std::vector<float>
   auto it = mesh_shapes_.find(key);
   if (it != mesh_shapes_.end()) return it->second;
   const tinygltf::Mesh& gm = model_.meshes[size_t(mi)];
+  count_mesh_copy(mi);
   std::vector<mat4> joints;
   if (skinned_node != invalid) joints = skin_joint_matrices(skinned_node);
   std::vector<int> shapes, meshes;
@@ -140,6 +143,41 @@ const std::vector<int>& GltfReader::mesh_shapes(int mi, const std::vector<float>
   if (extras_primitives_[size_t(mi)].empty() && meshes.size() == gm.primitives.size() && skinned_node == invalid)
     extras_primitives_[size_t(mi)] = meshes;
   return mesh_shapes_.emplace(std::move(key), std::move(shapes)).first->second;
+}
+
+// Gltf mesh `mi`'s vertices and triangles, as its accessors declare them,
+// added to those built so far and checked against the limits before the
+// mesh is converted (again: once per morph weights and skin).
+void GltfReader::count_mesh_copy(int mi) {
+  const tinygltf::Mesh& gm = model_.meshes[size_t(mi)];
+  uint64_t vertices = 0, triangles = 0;
+  for (size_t j = 0; j < gm.primitives.size(); ++j) {
+    const tinygltf::Primitive& prim = gm.primitives[j];
+    auto position = prim.attributes.find("POSITION");
+    const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    const bool triangles_mode =
+        mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    if (position == prim.attributes.end() || !triangles_mode) continue;  // skipped by convert_primitive
+    const std::string where = idx("meshes", mi) + "." + idx("primitives", long(j));
+    const uint64_t nv = accessors_.accessor(position->second, where + ".attributes.POSITION").count;
+    const uint64_t corners = prim.indices >= 0 ? accessors_.accessor(prim.indices, where + ".indices").count : nv;
+    const uint64_t t = mode == TINYGLTF_MODE_TRIANGLES ? corners / 3 : corners < 2 ? 0 : corners - 2;  // at most
+    // Saturating: a count past any limit stays past it.
+    vertices = nv > UINT64_MAX - vertices ? UINT64_MAX : vertices + nv;
+    triangles = t > UINT64_MAX - triangles ? UINT64_MAX : triangles + t;
+  }
+  // Each node's morph weights and each skin build the mesh again.
+  const std::string mw = idx("meshes", mi) + (vertices_ ? ", with the meshes built before it" : "");
+  if (!fits_in(vertices_, vertices, options_.limits.vertices))
+    fail(mw + ": " +
+         limit_exceeded("vertices", vertices > UINT64_MAX - vertices_ ? UINT64_MAX : vertices_ + vertices,
+                        options_.limits.vertices));
+  if (!fits_in(triangles_, triangles, options_.limits.triangles))
+    fail(mw + ": " +
+         limit_exceeded("triangles", triangles > UINT64_MAX - triangles_ ? UINT64_MAX : triangles_ + triangles,
+                        options_.limits.triangles));
+  vertices_ += vertices;
+  triangles_ += triangles;
 }
 
 Primitive GltfReader::convert_primitive(const tinygltf::Primitive& prim, const std::string& where,

@@ -230,6 +230,12 @@ std::vector<mat4> GltfReader::instance_matrices(const tinygltf::Value& e, const 
     const std::string aw = ew + ".attributes." + a.name;
     const tinygltf::Value& index = attributes.Get(a.name);
     if (!index.IsNumber()) fail(aw + ": expected an accessor index");
+    // Counted against the limit before any matrix is built.
+    const size_t declared = accessors_.accessor(index.GetNumberAsInt(), aw).count;
+    if (!fits_in(instances_, declared, options_.limits.instances))
+      fail(aw + ": " + std::to_string(declared) + " instances: " +
+           limit_exceeded("instances", declared > UINT64_MAX - instances_ ? UINT64_MAX : instances_ + declared,
+                          options_.limits.instances));
     a.values = accessors_.read_floats(index.GetNumberAsInt(), aw, {a.type}, a.formats);
     a.present = true;
     for (float v : a.values.values)
@@ -240,6 +246,7 @@ std::vector<mat4> GltfReader::instance_matrices(const tinygltf::Value& e, const 
     first = a.name;
   }
   if (!first) fail(ew + ".attributes: expected TRANSLATION, ROTATION or SCALE");
+  instances_ += count;
   std::vector<mat4> out(count, mat4(1.f));
   for (size_t i = 0; i < count; ++i) {
     mat4& m = out[i];

@@ -50,7 +50,7 @@ namespace rayform {
 
 struct GltfReadOptions {
   int scene = -1;       // index into the file's scenes; -1: its default scene (or scene 0)
-  Limits limits{};      // json_depth, vertices (accessors without data)
+  Limits limits{};      // json_depth, unbacked_elements; vertices, triangles, instances before copies
   FileAccess access{};  // buffers and images the file names
 };
 

@@ -41,7 +41,10 @@ struct Primitive {
 class GltfReader {
  public:
   GltfReader(const std::string& path, const GltfReadOptions& options, std::vector<std::string>* warnings)
-      : path_(path), options_(options), warnings_(warnings), accessors_(model_, path, options.limits.vertices) {}
+      : path_(path),
+        options_(options),
+        warnings_(warnings),
+        accessors_(model_, path, options.limits.unbacked_elements) {}
 
   Scene read(std::vector<ExtensionUse>* extensions);
 
@@ -96,6 +99,7 @@ class GltfReader {
                                   const std::string& where, std::initializer_list<int> types, uint32_t formats);
   std::vector<mat4> skin_joint_matrices(int skinned_node);
   const std::vector<int>& mesh_shapes(int mi, const std::vector<float>& weights, int skinned_node);
+  void count_mesh_copy(int mi);
   Primitive convert_primitive(const tinygltf::Primitive& prim, const std::string& where, const std::string& name,
                               const std::vector<float>& weights, const std::vector<mat4>* joints);
   void read_tangents(const tinygltf::Primitive& prim, const DracoPrimitive* draco, const std::string& where,
@@ -127,6 +131,10 @@ class GltfReader {
   // converted.
   std::vector<std::array<int, 2>> textures_;
   std::vector<int> nodes_;  // per glTF node: Scene node
+  // Built so far, checked against options_.limits before each copy is built:
+  // EXT_mesh_gpu_instancing instances, and the vertices and triangles of
+  // every Scene mesh (a glTF mesh is copied per morph weights and skin).
+  uint64_t instances_ = 0, vertices_ = 0, triangles_ = 0;
   std::vector<uint8_t> on_path_;
   int default_material_ = invalid;
 };

@@ -7,6 +7,7 @@
 #include "rayform/importers/obj/obj_materials.h"
 #include "rayform/importers/obj/obj_side_files.h"
 #include "rayform/importers/obj/obj_smooth_normals.h"
+#include "rayform/importers/obj/obj_text_bounds.h"
 #include "rayform/importers/obj/obj_vertex_weld.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 
@@ -59,6 +60,7 @@ class ObjReader {
 
   Scene read() {
     file_ = FileBytes(path_, "OBJ file");
+    obj::check_obj_text_bounds(file_, path_);
     text_ = file_.view();
     materials_.load_libraries(text_);
 

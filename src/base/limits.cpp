@@ -18,6 +18,7 @@ struct NamedLimit {
 constexpr NamedLimit named_limits[] = {
     {"triangles", &Limits::triangles, unbounded},
     {"vertices", &Limits::vertices, unbounded},
+    {"unbacked-elements", &Limits::unbacked_elements, unbounded},
     {"instances", &Limits::instances, unbounded},
     {"texture-texels", &Limits::texture_texels, unbounded},
     {"json-depth", &Limits::json_depth, max_json_depth},

@@ -21,7 +21,8 @@ uint64_t default_memory_limit();
 
 struct Limits {
   uint64_t triangles = uint64_t(1) << 27;       // in all meshes of a scene, each mesh counted once
-  uint64_t vertices = uint64_t(1) << 27;        // in all meshes of a scene; also any glTF accessor without data
+  uint64_t vertices = uint64_t(1) << 27;        // in all meshes of a scene
+  uint64_t unbacked_elements = 1 << 24;         // glTF accessor elements without a bufferView (zeros), every read
   uint64_t instances = uint64_t(1) << 26;       // shapes once the node hierarchy is flattened
   uint64_t texture_texels = uint64_t(1) << 28;  // width x height of one texture, read from its header; each
                                                 // side at most the square root (16384)

@@ -129,6 +129,8 @@ FuzzOutcome load_and_prepare(const std::string& file) {
     LoadOptions lo;
     lo.access.confine = true;  // files from strangers: rayform's --confine
     lo.limits.texture_texels = fuzz_texture_texels;
+    lo.limits.unbacked_elements = fuzz_unbacked_elements;
+    lo.limits.instances = fuzz_instances;
     LoadedScene loaded = load_scene((workspace().scene_folder() / file).string(), lo);
     o.outside = outside_uses(loaded.scene);
     (void)scene_stats(loaded.scene, lo.limits.instances);

@@ -25,6 +25,12 @@ struct FuzzLimits {
 // (up to 1 GiB decoded) does not pass the fuzzer's and the replay's memory
 // bounds. What is tested is that every header is checked, not the default.
 inline constexpr uint64_t fuzz_texture_texels = uint64_t(1) << 22;
+// Likewise for the counts a glTF may declare without bytes behind them
+// (accessors without a bufferView, in all: 48 MB of VEC3 floats) and the
+// instances it makes by count: low enough that the fuzzer reaches each limit
+// within its memory bound, so that the checks, not the defaults, are tested.
+inline constexpr uint64_t fuzz_unbacked_elements = uint64_t(1) << 22;
+inline constexpr uint64_t fuzz_instances = uint64_t(1) << 20;
 
 struct FuzzOutcome {
   bool skipped = false;  // over FuzzLimits::max_input_bytes

@@ -145,6 +145,8 @@ def main():
     # 10 million identical triangles (80 MB): expanded by the replay runner.
     put("obj", "ten_million_identical_triangles.repeat",
         "repeat 10000000\nv 0 0 0\nv 1 0 0\nv 0 1 0\n--body--\nf 1 2 3\n")
+    # 100 MB of zero bytes: no line end, no face (issue 33's 2 GB file, smaller).
+    put("obj", "zeros_100mb.repeat", b"repeat 104857600\n--body--\n\0")
 
     # ---- course_txt: scene.txt %% mesh.obj %% texture ------------------------
     camera = "PerspectiveCamera {\n center 0 0 5\n direction 0 0 -1\n up 0 1 0\n angle 30\n}\n"
@@ -178,6 +180,46 @@ def main():
     })
     put("gltf", "glb_accessor_count_2e8_no_view.glb", glb(huge, b""))
     put("gltf", "buffer_uri_etc_passwd.gltf", gltf_with_buffer("../../../../etc/passwd", 36))
+    # Counts the file does not back (issue 33): zeros without a bufferView.
+    # POSITION of 134217723 elements, just under the vertex limit (1.6 GB).
+    put("gltf", "position_134217723_no_view.gltf", gltf({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"componentType": 5126, "count": 134217723, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [0, 0, 0]}],
+    }))
+    # EXT_mesh_gpu_instancing: 2^25 translations without a bufferView (2 GB of matrices).
+    put("gltf", "instancing_2e25_no_view.gltf", gltf({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "extensionsUsed": ["EXT_mesh_gpu_instancing"],
+        "nodes": [{"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 1}}}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"componentType": 5126, "count": 1 << 25, "type": "VEC3"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,"
+                     "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+    }))
+    # 64 nodes with their own morph weights over a mesh of 2^21 vertices
+    # without a bufferView: 64 copies (2.15 GB).
+    put("gltf", "morph_64_nodes_2e21_no_view.gltf", gltf({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(64))}],
+        "nodes": [{"mesh": 0, "weights": [(k + 1) / 64]} for k in range(64)],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "targets": [{"POSITION": 1}]}]}],
+        "accessors": [{"componentType": 5126, "count": 1 << 21, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]},
+                      {"componentType": 5126, "count": 1 << 21, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+    }))
+    # A Draco attribute id of 2^40, which tinygltf reads as 0.
+    put("gltf", "draco_attribute_id_2e40.gltf", gltf({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "extensions": {"KHR_draco_mesh_compression": {
+            "bufferView": 0, "attributes": {"POSITION": 1 << 40}}}}]}],
+        "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": 16}],
+        "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,RFJBQ08CAgEBAAAACQkJCQ=="}],
+    }))
     put("gltf", "buffer_uri_outside.gltf", gltf_with_buffer("../outside/x.bin", 144))
 
     # ---- course_args: words split at NUL or white space ---------------------

@@ -6,7 +6,8 @@
 // - generated meshes (procedural_mesh.h) as OBJ and as glTF files that use
 //   EXT_meshopt_compression (KHR_draco_mesh_compression: make_draco_seeds.cpp),
 //   KHR_mesh_quantization, sparse accessors, EXT_mesh_gpu_instancing and an
-//   embedded PNG with KHR_texture_transform;
+//   embedded PNG with KHR_texture_transform; morph weights per node and
+//   accessors without a bufferView (count_seeds);
 // - small images written by rayform in every format the image target picks;
 // - course command lines;
 // - with SHARED_DIR: the course scenes and assets found there (under 1 MB),
@@ -185,6 +186,34 @@ void plain_seeds(const GltfMesh& g, const std::string& png) {
        glb(j.str() + R"("buffers":[{"byteLength":)" + std::to_string(bin.size()) + "}]}", bin));
 }
 
+// The paths that allocate by a count the file declares: three nodes with
+// their own morph weights (a mesh copy each), a morph target without a
+// bufferView (zeros, one sparse value), and EXT_mesh_gpu_instancing with a
+// SCALE accessor without a bufferView (zeros) beside a TRANSLATION one.
+void count_seeds() {
+  const std::vector<float> triangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::vector<float> delta = {0, 0.5f, 0};
+  const std::vector<uint8_t> target = {2, 0, 0, 0};  // vertex 2, padded
+  const std::vector<float> translations = {0, 0, 0, 2, 0, 0};
+  const std::string bin = bytes_of(triangle) + bytes_of(delta) + bytes_of(target) + bytes_of(translations);
+  std::ostringstream j;
+  j << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2,3]}],)"
+    << R"("extensionsUsed":["EXT_mesh_gpu_instancing"],)"
+    << R"("nodes":[{"mesh":0,"weights":[0.5]},{"mesh":0,"weights":[1],"translation":[0,0,-1]},)"
+    << R"({"mesh":0,"translation":[0,0,-2]},)"
+    << R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":2,"SCALE":3}}}}],)"
+    << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"targets":[{"POSITION":1}]}],"weights":[0]}],)"
+    << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+    << R"({"componentType":5126,"count":3,"type":"VEC3","sparse":{"count":1,)"
+    << R"("indices":{"bufferView":2,"componentType":5121},"values":{"bufferView":1}}},)"
+    << R"({"bufferView":3,"componentType":5126,"count":2,"type":"VEC3"},)"
+    << R"({"componentType":5126,"count":2,"type":"VEC3"}],)"
+    << R"("bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12},)"
+    << R"({"buffer":0,"byteOffset":48,"byteLength":4},{"buffer":0,"byteOffset":52,"byteLength":24}],)"
+    << R"("buffers":[{"byteLength":)" << bin.size() << R"(,"uri":")" << data_uri(bin) << "\"}]}";
+  seed("gltf", "counts_morph_instancing_unbacked.gltf", j.str());
+}
+
 // A scene through rayform's writers: embedded .gltf and .glb.
 void converted_seeds(const Scene& scene, const std::string& name) {
   for (const char* ext : {".gltf", ".glb"}) {
@@ -292,6 +321,7 @@ int main(int argc, char** argv) {
   const GltfMesh sphere = gltf_mesh(make_icosphere(1));
   meshopt_seeds(sphere);
   plain_seeds(sphere, png);
+  count_seeds();
 
   // Course command lines.
   using namespace std::string_literals;

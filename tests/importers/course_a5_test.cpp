@@ -81,9 +81,15 @@ TEST(CourseA5, DialectDetection) {
   EXPECT_EQ(dialect("Materials { numMaterials 1 Material { Noise { color 1 0 0 color 0 1 0 } } }\n"),
             CourseDialect::a5);
   EXPECT_EQ(dialect("# Noise and refractionIndex only in a comment\n"), CourseDialect::v2012);
-  // falloff decides 2019 before refractionIndex decides a5 (the course's command line then names a5).
+  // refractionIndex and Noise mean a5 with falloff too (a5's point lights
+  // have it: scene13_diamond); falloff alone means 2019.
   EXPECT_EQ(dialect("Lights { numLights 1 PointLight { position 0 0 0 color 1 1 1 falloff 1 } }\n"
                     "Materials { numMaterials 1 Material { refractionIndex 1.5 } }\n"),
+            CourseDialect::a5);
+  EXPECT_EQ(dialect("Lights { numLights 1 PointLight { position 0 0 0 color 1 1 1 falloff 1 } }\n"
+                    "Materials { numMaterials 1 Material { Noise { color 1 0 0 color 0 1 0 } } }\n"),
+            CourseDialect::a5);
+  EXPECT_EQ(dialect("Lights { numLights 1 PointLight { position 0 0 0 color 1 1 1 falloff 1 } }\n"),
             CourseDialect::v2019);
 
   auto dir = test::temp_dir("a5_dialect");

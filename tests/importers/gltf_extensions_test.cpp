@@ -306,6 +306,26 @@ TEST_F(GltfExtensions, CorruptDracoStreamIsAnErrorNamingThePrimitive) {
       << error(missing);
 }
 
+TEST_F(GltfExtensions, DracoAttributeIdOutOfRangeIsRefusedNotWrapped) {
+  GltfDraft b;
+  const std::vector<uint8_t> garbage = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, 0, 0, 9, 9, 9, 9};
+  const int view = b.view(garbage.data(), garbage.size());
+  b.j["accessors"].push_back({{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"}});
+  b.one_mesh({{"POSITION", 0}});
+  // 2^40: tinygltf would read it as the int 0.
+  b.j["meshes"][0]["primitives"][0]["extensions"] = {
+      {"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", {{"POSITION", uint64_t(1) << 40}}}}}};
+  EXPECT_NE(error(b).find("meshes[0].primitives[0].extensions.KHR_draco_mesh_compression.attributes.POSITION: "
+                          "expected a Draco attribute id (an integer from 0 to 2147483647), got 1099511627776"),
+            std::string::npos)
+      << error(b);
+  b.j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["POSITION"] = -1;
+  EXPECT_NE(
+      error(b).find("attributes.POSITION: expected a Draco attribute id (an integer from 0 to 2147483647), got -1"),
+      std::string::npos)
+      << error(b);
+}
+
 // ---- EXT_mesh_gpu_instancing ----------------------------------------------------------------------
 
 GltfDraft instanced(size_t count) {

@@ -4,6 +4,7 @@
 // and --confine (referenced_files.h) for every kind of file a scene names.
 // All inputs are written here.
 #include "rayform/importers/gltf/gltf_reader.h"
+#include "rayform/importers/obj/obj_reader.h"
 #include "rayform/importers/referenced_files.h"
 #include "rayform/base/error.h"
 #include "rayform/importers/scene_io.h"
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 
 namespace rayform {
 namespace {
@@ -105,7 +107,7 @@ TEST(HostileGltf, JsonNestedDeeperThanTheLimitIsRefusedWithItsPlace) {
   EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "thousand.gltf").string(), raised); }), "");
 }
 
-TEST(HostileGltf, AccessorWithoutDataIsBoundedByTheVertexLimit) {
+TEST(HostileGltf, AccessorsWithoutDataAreBoundedByTheUnbackedLimit) {
   const fs::path dir = test::temp_dir("hostile_accessor");
   auto file = [&](int count) {
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
@@ -113,18 +115,150 @@ TEST(HostileGltf, AccessorWithoutDataIsBoundedByTheVertexLimit) {
 "accessors":[{"componentType":5126,"count":)" +
            std::to_string(count) + R"(,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}]})";
   };
-  put(dir / "bomb.gltf", file(200000000));
-  const std::string e = error_of([&] { read_gltf_scene((dir / "bomb.gltf").string()); });
-  EXPECT_NE(e.find("count 200000000 without a bufferView: vertices: 200000000 is more than the limit of 134217728"),
-            std::string::npos)
-      << e;
   GltfReadOptions small;
-  small.limits.vertices = 6;
+  small.limits.unbacked_elements = 6;
   put(dir / "seven.gltf", file(7));
   put(dir / "six.gltf", file(6));
-  EXPECT_NE(error_of([&] { read_gltf_scene((dir / "seven.gltf").string(), small); }).find("limit of 6"),
+  ASSERT_NE(error_of([&] {
+              read_gltf_scene((dir / "seven.gltf").string(), small);
+            }).find("(accessors[0]): count 7 without a bufferView: unbacked-elements: 7 is more than the limit of 6"),
             std::string::npos);
   EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "six.gltf").string(), small); }), "");
+  // Just under the vertex limit (a 700-byte file that rendered 134 million
+  // zero vertices): refused by the default limit before anything is allocated.
+  put(dir / "bomb.gltf", file(134217723));
+  const std::string e = error_of([&] { read_gltf_scene((dir / "bomb.gltf").string()); });
+  EXPECT_NE(e.find("bomb.gltf: meshes[0].primitives[0].attributes.POSITION (accessors[0]): count 134217723 without a "
+                   "bufferView: unbacked-elements: 134217723 is more than the limit of 16777216 (raise it with --limit "
+                   "unbacked-elements=N)"),
+            std::string::npos)
+      << e;
+}
+
+// A mesh of `count` vertices without data and one morph target (without
+// data) on `nodes` nodes, node k with weight (k + 1) / nodes: a mesh copy each.
+std::string morphed_nodes(int count, int nodes) {
+  std::string node_list, roots;
+  for (int k = 0; k < nodes; ++k) {
+    node_list +=
+        (k ? "," : "") + std::string(R"({"mesh":0,"weights":[)") + std::to_string(double(k + 1) / nodes) + "]}";
+    roots += (k ? "," : "") + std::to_string(k);
+  }
+  const std::string n = std::to_string(count);
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots + R"(]}],"nodes":[)" + node_list +
+         R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"targets":[{"POSITION":1}]}]}],
+"accessors":[{"componentType":5126,"count":)" +
+         n + R"(,"type":"VEC3","min":[0,0,0],"max":[0,0,0]},{"componentType":5126,"count":)" + n +
+         R"(,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}]})";
+}
+
+TEST(HostileGltf, MeshCopiesPerMorphWeightsCountAgainstTheLimitsBeforeTheyAreBuilt) {
+  const fs::path dir = test::temp_dir("hostile_morph");
+  // Each copy reads both accessors again: 4 copies of 2 x 30 elements.
+  put(dir / "four.gltf", morphed_nodes(30, 4));
+  GltfReadOptions o;
+  o.limits.unbacked_elements = 200;
+  ASSERT_NE(error_of([&] { read_gltf_scene((dir / "four.gltf").string(), o); })
+                .find("four.gltf: meshes[0].primitives[0].attributes.POSITION (accessors[0]): count 30 without a "
+                      "bufferView (after 180 read before): unbacked-elements: 210 is more than the limit of 200"),
+            std::string::npos)
+      << error_of([&] { read_gltf_scene((dir / "four.gltf").string(), o); });
+  o.limits.unbacked_elements = 240;
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "four.gltf").string(), o); }), "");
+  // Vertices and triangles of every copy, before it is built.
+  o.limits.vertices = 119;
+  EXPECT_NE(error_of([&] { read_gltf_scene((dir / "four.gltf").string(), o); })
+                .find("four.gltf: meshes[0], with the meshes built before it: vertices: 120 is more than the limit of "
+                      "119 (raise it with --limit vertices=N)"),
+            std::string::npos);
+  o.limits.vertices = 120;
+  o.limits.triangles = 39;
+  EXPECT_NE(error_of([&] {
+              read_gltf_scene((dir / "four.gltf").string(), o);
+            }).find("triangles: 40 is more than the limit of 39"),
+            std::string::npos);
+  // The issue's file: 64 nodes, 2^21 vertices each (2.15 GB once built).
+  put(dir / "sixtyfour.gltf", morphed_nodes(1 << 21, 64));
+  EXPECT_NE(error_of([&] {
+              read_gltf_scene((dir / "sixtyfour.gltf").string());
+            }).find("unbacked-elements: 18874368 is more than the limit of 16777216"),
+            std::string::npos);
+}
+
+TEST(HostileGltf, InstancesCountAgainstTheLimitBeforeTheirMatricesAreBuilt) {
+  const fs::path dir = test::temp_dir("hostile_instances");
+  auto file = [](int count) {
+    std::string f = gltf(R"([{"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":1}}}}])",
+                         "[0]", std::string("data:application/octet-stream;base64,") + triangle_base64,
+                         R"(,"extensionsUsed":["EXT_mesh_gpu_instancing"])");
+    const std::string first = R"("max":[1,1,0]})";
+    f.insert(f.find(first) + first.size(),
+             R"(,{"componentType":5126,"count":)" + std::to_string(count) + R"(,"type":"VEC3"})");
+    return f;
+  };
+  put(dir / "thousand.gltf", file(1000));
+  put(dir / "more.gltf", file(1001));
+  GltfReadOptions o;
+  o.limits.instances = 1000;
+  ASSERT_NE(error_of([&] { read_gltf_scene((dir / "more.gltf").string(), o); })
+                .find("more.gltf: nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION: 1001 instances: "
+                      "instances: 1001 is more than the limit of 1000 (raise it with --limit instances=N)"),
+            std::string::npos)
+      << error_of([&] { read_gltf_scene((dir / "more.gltf").string(), o); });
+  EXPECT_EQ(error_of([&] { read_gltf_scene((dir / "thousand.gltf").string(), o); }), "");
+  // The issue's file: 2^25 instances without data, refused before any is built.
+  put(dir / "many.gltf", file(1 << 25));
+  EXPECT_NE(error_of([&] {
+              read_gltf_scene((dir / "many.gltf").string(), o);
+            }).find("TRANSLATION: 33554432 instances: instances: 33554432 is more than the limit of 1000"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read_gltf_scene((dir / "many.gltf").string());
+            }).find("TRANSLATION (accessors[1]): count 33554432 without a bufferView: unbacked-elements"),
+            std::string::npos);
+}
+
+// The peak resident memory of this process since reset_peak_memory(), in
+// kilobytes (Linux: /proc/self/status VmHWM; 0 where it cannot be read).
+size_t peak_memory_kb() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return size_t(std::stoull(line.substr(6)));
+  return 0;
+}
+void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+TEST(HostileObj, TextWithoutLineEndsOrFacesFailsAtOnceWithoutBecomingResident) {
+  const fs::path dir = test::temp_dir("hostile_obj");
+  // 200 MB of zeros without a line end (a sparse file: no disk used).
+  const fs::path zeros = dir / "zeros.obj";
+  std::ofstream(zeros, std::ios::binary).put('\0');
+  fs::resize_file(zeros, size_t(200) << 20);
+  reset_peak_memory();
+  const size_t before = peak_memory_kb();
+  EXPECT_EQ(error_of([&] { read_obj_scene(zeros.string()); }),
+            zeros.string() + ":1: line longer than 67108864 bytes (not an OBJ text)");
+  if (before > 0) {
+    EXPECT_LT(peak_memory_kb(), before + 100 * 1024);  // at most 64 MB read
+  }
+  fs::remove(zeros);
+  // 200 MB of lines without a face: read once, let go behind the walk.
+  const fs::path lines = dir / "lines.obj";
+  {
+    std::ofstream out(lines, std::ios::binary);
+    const std::string block = "# " + std::string(1000, 'x') + "\nv 0 0 0\n";
+    for (size_t written = 0; written < (size_t(200) << 20); written += block.size()) out << block;
+  }
+  reset_peak_memory();
+  const size_t before_lines = peak_memory_kb();
+  EXPECT_EQ(error_of([&] { read_obj_scene(lines.string()); }), lines.string() + ": OBJ file has no faces");
+  if (before_lines > 0) {
+    EXPECT_LT(peak_memory_kb(), before_lines + 150 * 1024);
+  }
+  fs::remove(lines);
+  // A face anywhere, and lines ending in '\r' alone, are fine.
+  put(dir / "cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+  EXPECT_EQ(error_of([&] { read_obj_scene((dir / "cr.obj").string()); }), "");
 }
 
 TEST(HostileScenes, TotalsAboveTheLimitsAreRefusedByLoadScene) {

@@ -4,7 +4,8 @@
 # 0.5 % of pixels), and scenes 06 and 12, which have no reference, rendered
 # with the course's own command line (no -dialect: detected) at the reference
 # size and at 320x240. Also the detection itself: the a5 scenes with a .bmp
-# cube map read as a5, the 2019 scene06 (a .png cube map) as 2019.
+# cube map read as a5, scene13_diamond (refractionIndex, with falloff) too,
+# rendered without -dialect; the 2019 scene06 (a .png cube map) as 2019.
 source "$(dirname "$0")/lib.sh"
 require_shared
 a5="$RAYFORM_SHARED/course/2012-a5"
@@ -38,8 +39,24 @@ idiff -q "$tmp/default.png" "$tmp/b0.png" >/dev/null 2>&1 && fail "a5 without -b
 idiff -q "$tmp/default.png" "$tmp/modern.png" >/dev/null 2>&1 || fail "rayform render --dialect a5 differs from the course command line"
 echo "ok   -bounces defaults to 4 in a5; render --dialect a5 gives the same picture"
 
+# The course's command line without -dialect: scene13_diamond (refractionIndex
+# and point lights with falloff) is detected as a5 and gives the reference
+# picture, and at 160x160 the same picture as -dialect a5.
+if (cd "$a5" && "$RAYFORM_BIN" -input scene13_diamond.txt -size 200 200 -output "$tmp/diamond.png" -shadows -bounces 4 -quiet &&
+  "$RAYFORM_BIN" -input scene13_diamond.txt -size 160 160 -output "$tmp/diamond160.png" -shadows -bounces 4 -quiet &&
+  "$RAYFORM_BIN" -input scene13_diamond.txt -size 160 160 -output "$tmp/diamond160_a5.png" -shadows -bounces 4 -dialect a5 -quiet); then
+  before=$failures
+  idiff -fail 0.0079 -failpercent 0.5 "$a5/reference/scene13_diamond.png" "$tmp/diamond.png" >/dev/null 2>&1 ||
+    fail "scene13_diamond without -dialect differs from the a5 reference"
+  idiff -q "$tmp/diamond160_a5.png" "$tmp/diamond160.png" >/dev/null 2>&1 ||
+    fail "scene13_diamond at 160x160 without -dialect differs from -dialect a5"
+  [ $failures -eq $before ] && echo "ok   scene13_diamond without -dialect renders as a5"
+else
+  fail "scene13_diamond without -dialect"
+fi
+
 dialect_of() { (cd "$(dirname "$1")" && "$RAYFORM_BIN" info "$(basename "$1")") | sed -n 's/.*dialect \([0-9a-z]*\).*/\1/p'; }
-for scene in scene06_bunny_1k scene10_sphere scene11_cube scene12_vase; do
+for scene in scene06_bunny_1k scene10_sphere scene11_cube scene12_vase scene13_diamond; do
   d=$(dialect_of "$a5/$scene.txt")
   [ "$d" = a5 ] || fail "$scene detected as '$d', not a5"
 done

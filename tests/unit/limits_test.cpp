@@ -25,7 +25,8 @@ TEST(Limits, SetByNameWithSuffixes) {
 TEST(Limits, BadNamesAndValuesAreExplained) {
   Limits l;
   EXPECT_EQ(set_limit(l, "polygons", "5"),
-            "unknown limit 'polygons' (expected one of: triangles, vertices, instances, texture-texels, json-depth, memory)");
+            "unknown limit 'polygons' (expected one of: triangles, vertices, unbacked-elements, instances, "
+            "texture-texels, json-depth, memory)");
   EXPECT_NE(set_limit(l, "triangles", "0").find("expected a positive whole number"), std::string::npos);
   EXPECT_NE(set_limit(l, "triangles", "-1").find("expected a positive whole number"), std::string::npos);
   EXPECT_NE(set_limit(l, "triangles", "1.5").find("expected a positive whole number"), std::string::npos);
