@@ -3,6 +3,8 @@
 #include "module_parts.h"
 #include "rayform/base/error.h"
 
+#include <pybind11/numpy.h>
+
 namespace rayform::python {
 
 std::string path_argument(const py::handle& value, const char* what) {
@@ -39,6 +41,11 @@ PYBIND11_MODULE(rayform, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
+  // NumPy's C API, looked up once here while the import holds the GIL: a
+  // first lookup in render() (a function-local static that imports numpy)
+  // deadlocks when two threads make it at once.
+  py::array_t<float>(std::vector<py::ssize_t>{0});
+  py::array_t<uint8_t>(std::vector<py::ssize_t>{0});
   add_scene(m);
   add_render(m);
   add_files(m);

@@ -21,8 +21,9 @@ except ImportError:
 MODELS = {".glb", ".gltf", ".obj", ".txt"}
 
 
-def render_one(model, out_dir, size):
-    out = out_dir / (model.stem + ".png")
+def render_one(model, folder, out_dir, size):
+    # models/cars/a.glb -> cars_a_glb.png: models of one name in other folders or formats stay apart.
+    out = out_dir / ("_".join(model.relative_to(folder).with_suffix("").parts) + "_" + model.suffix[1:] + ".png")
     # One prepare per model (as a program rendering several views would);
     # each render uses one thread, the pool provides the parallelism.
     prepared = rayform.prepare(model)
@@ -43,7 +44,7 @@ def main():
     failed = 0
     bar = tqdm(total=len(models), unit="model") if tqdm else None
     with concurrent.futures.ThreadPoolExecutor(a.threads) as pool:
-        futures = {pool.submit(render_one, m, a.out, a.size): m for m in models}
+        futures = {pool.submit(render_one, m, a.folder, a.out, a.size): m for m in models}
         for done, f in enumerate(concurrent.futures.as_completed(futures), 1):
             try:
                 f.result()

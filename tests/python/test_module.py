@@ -5,6 +5,8 @@ import json
 import os
 import shutil
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -138,6 +140,19 @@ def test_two_threads_render_what_one_does(rayform):
         t.join()
     for a, b in zip(alone, results):
         assert np.array_equal(a["color"], b["color"])
+
+
+def test_threads_making_the_first_render_at_once(tmp_path):
+    # A fresh process whose first two renders start together: they once
+    # deadlocked on NumPy's C API, looked up on first use.
+    script = (
+        "import threading, rayform\n"
+        f"ts = [threading.Thread(target=rayform.render, args=({str(OBJ)!r},), kwargs=dict(size=(8, 8))) "
+        "for _ in range(4)]\n"
+        "[t.start() for t in ts]\n[t.join() for t in ts]\nprint('done')\n")
+    for _ in range(3):
+        r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+        assert r.returncode == 0 and r.stdout == "done\n", r.stderr
 
 
 def test_render_releases_the_gil(rayform):
