@@ -87,6 +87,12 @@ RenderOptions render_options(const RenderJob& job, const JobOutputs& outputs) {
   return o;
 }
 
+// The scene's defaults where the job keeps them.
+void apply_scene_defaults(const RenderJob& job, const ReadyScene& loaded, RenderOptions& ro) {
+  if (job.default_bounces) ro.bounces = loaded.render.bounces;
+  if (job.default_tone_map) ro.tone_map = loaded.render.tone_map;
+}
+
 void check_memory(const RenderJob& job, const RenderOptions& options) {
   if (std::string problem = render_memory_problem(options, available_memory_bytes()); !problem.empty())
     throw Error(job.output + ": " + problem);
@@ -99,6 +105,14 @@ LoadedScene load_job_scene(const RenderJob& job) { return load_scene(job.input, 
 RenderOptions job_render_options(const RenderJob& job) { return render_options(job, parse_job_outputs(job)); }
 
 void check_render_job_memory(const RenderJob& job) { check_memory(job, job_render_options(job)); }
+
+ReadyScene load_job_ready(const RenderJob& job, const JobHooks& hooks) { return load_ready(job, hooks); }
+
+RenderOptions job_render_options(const RenderJob& job, const ReadyScene& ready) {
+  RenderOptions o = job_render_options(job);
+  apply_scene_defaults(job, ready, o);
+  return o;
+}
 
 JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   const JobOutputs outputs = job_outputs(job);
@@ -144,11 +158,10 @@ JobReport run_render_job(const RenderJob& job, const JobHooks& hooks) {
   }
   if (spread) spread->agree_ready(failure);
 
-  if (job.default_bounces) ro.bounces = loaded.render.bounces;
+  apply_scene_defaults(job, loaded, ro);
   if (ro.bounces > max_bounces && hooks.note)
     hooks.note("bounces " + std::to_string(ro.bounces) + ": reflections and refractions are traced " +
                std::to_string(max_bounces) + " deep at most; rendering " + std::to_string(max_bounces));
-  if (job.default_tone_map) ro.tone_map = loaded.render.tone_map;
   ro.progress = hooks.progress;
   if (hooks.render_started) hooks.render_started();
   const auto t_render = Clock::now();

@@ -129,4 +129,15 @@ RenderOptions job_render_options(const RenderJob& job);
 // machine has (render_memory.h).
 void check_render_job_memory(const RenderJob& job);
 
+// For a caller that renders in memory (the Python module, python/) what
+// run_render_job does before it prepares: `job.input` (or job.preloaded)
+// read with the job's camera, environment and background, the warnings and
+// notes handed to `hooks`. Throws rayform::Error.
+ReadyScene load_job_ready(const RenderJob& job, const JobHooks& hooks = {});
+
+// The options run_render_job hands to render() for `job` once its scene is
+// `ready`: job_render_options with the scene's default bounces and tone map
+// where the job keeps them (RenderJob::default_bounces, default_tone_map).
+RenderOptions job_render_options(const RenderJob& job, const ReadyScene& ready);
+
 }  // namespace rayform
