@@ -24,7 +24,8 @@ void add_read_flags(CLI::App& command, ReadFlags& flags) {
                          std::to_string(defaults.instances) + ", texture-texels " +
                          std::to_string(defaults.texture_texels) + " (each side at most its square root), json-depth " +
                          std::to_string(defaults.json_depth) + ", memory " + memory_size_text(defaults.memory) +
-                         " (bytes the job may hold at once: 1/16 of this machine's memory))");
+                         " (bytes the job may hold at once: 1/16 of this machine's memory, growing by 16 bytes a byte of "
+                         "the files read up to 1/2; a value given here does not grow))");
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
                    "out or URIs other than data:)");
@@ -44,7 +45,10 @@ void apply_read_flags(const ReadFlags& flags, LoadOptions& options) {
     if (std::string problem = set_limit(options.limits, l.substr(0, eq), l.substr(eq + 1)); !problem.empty())
       throw UsageError("--" + problem);
   }
-  job_memory().set_limit(options.limits.memory);
+  // The default grows with the files read (memory_budget.h); a --limit memory does not.
+  bool memory_set = false;
+  for (const std::string& l : flags.limits) memory_set |= l.rfind("memory=", 0) == 0;
+  job_memory().set_limit(options.limits.memory, !memory_set);
   options.access.confine = flags.confine;
   set_quiet(quiet_requested(flags));
 }

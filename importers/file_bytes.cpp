@@ -1,4 +1,5 @@
 #include "rayform/importers/file_bytes.h"
+#include "rayform/base/memory_budget.h"
 
 #include "rayform/base/error.h"
 
@@ -22,6 +23,7 @@ FileBytes::FileBytes(const std::string& path, const std::string& what) {
       ::close(fd);
       mapped_ = static_cast<const char*>(p);
       size_ = size_t(st.st_size);
+      job_memory().credit_input(size_);
       return;
     }
   }
@@ -37,6 +39,7 @@ FileBytes::FileBytes(const std::string& path, const std::string& what) {
     read_.append(buffer, size_t(n));
   }
   ::close(fd);
+  job_memory().credit_input(read_.size());
 }
 
 FileBytes& FileBytes::operator=(FileBytes&& o) noexcept {

@@ -1,4 +1,5 @@
 #include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/base/memory_budget.h"
 
 #include <nlohmann/json.hpp>
 
@@ -134,6 +135,7 @@ bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::strin
     return false;
   }
   out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  job_memory().credit_input(out->size());
   return true;
 }
 

@@ -3,6 +3,7 @@
 // container, JSON depth), tinygltf's load with file access and image decoding
 // of our own, its warnings passed on and its failures explained.
 #include "rayform/importers/gltf/gltf_file_access.h"
+#include "rayform/base/memory_budget.h"
 #include "rayform/importers/gltf/gltf_images.h"
 #include "rayform/importers/gltf/gltf_reader_internal.h"
 
@@ -28,6 +29,7 @@ void GltfReader::load() {
     if (in.bad()) fail("cannot read glTF file");
   }
   if (bytes.empty()) fail("not a glTF file: the file is empty");
+  job_memory().credit_input(bytes.size());
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail("file too large for a glTF (4 GiB or more)");
   const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (!glb) {

@@ -27,13 +27,17 @@ constexpr NamedLimit named_limits[] = {
 // clang-format on
 }  // namespace
 
-uint64_t default_memory_limit() {
+uint64_t physical_memory_bytes() {
   static const uint64_t bytes = [] {
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || page <= 0) return uint64_t(1) << 30;
-    return std::max(uint64_t(pages) * uint64_t(page) / 16, uint64_t(256) << 20);
+    return pages <= 0 || page <= 0 ? uint64_t(0) : uint64_t(pages) * uint64_t(page);
   }();
   return bytes;
+}
+
+uint64_t default_memory_limit() {
+  const uint64_t physical = physical_memory_bytes();
+  return physical == 0 ? uint64_t(1) << 30 : std::max(physical / 16, uint64_t(256) << 20);
 }
 
 std::string limit_names() {

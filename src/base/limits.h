@@ -16,8 +16,11 @@ namespace rayform {
 inline constexpr uint64_t max_json_depth = 1024;
 
 // The default of Limits::memory: a sixteenth of the machine's physical
-// memory (sysconf), at least 256 MiB; 1 GiB when unknown. memory_budget.h says why.
+// memory (sysconf), at least 256 MiB; 1 GiB when unknown. It grows with the
+// files a job reads, up to half of physical memory: memory_budget.h says why.
 uint64_t default_memory_limit();
+// The machine's physical memory in bytes (sysconf); 0 when unknown.
+uint64_t physical_memory_bytes();
 
 struct Limits {
   uint64_t triangles = uint64_t(1) << 27;       // in all meshes of a scene, each mesh counted once

@@ -12,6 +12,8 @@ namespace rayform {
 struct MemoryBudget::State {
   std::atomic<uint64_t> used{0};
   std::atomic<uint64_t> limit{0};
+  std::atomic<bool> grows{false};
+  std::atomic<uint64_t> input{0};  // bytes credited
 };
 
 struct MemoryCharge::Held {
@@ -24,8 +26,19 @@ uint64_t MemoryCharge::bytes() const { return held_ ? held_->bytes : 0; }
 
 MemoryBudget::MemoryBudget(uint64_t limit) : state_(std::make_shared<State>()) { state_->limit.store(limit); }
 
-uint64_t MemoryBudget::limit() const { return state_->limit.load(); }
-void MemoryBudget::set_limit(uint64_t limit) { state_->limit.store(limit); }
+uint64_t MemoryBudget::limit() const {
+  const uint64_t base = state_->limit.load();
+  if (!state_->grows.load()) return base;
+  const uint64_t ceiling = std::max(base, physical_memory_bytes() / 2);
+  const uint64_t input = state_->input.load();
+  const uint64_t room = input > (ceiling - base) / input_expansion ? ceiling - base : input * input_expansion;
+  return base + room;
+}
+void MemoryBudget::set_limit(uint64_t limit, bool grows_with_input) {
+  state_->limit.store(limit);
+  state_->grows.store(grows_with_input);
+}
+void MemoryBudget::credit_input(uint64_t bytes) { state_->input.fetch_add(bytes); }
 uint64_t MemoryBudget::used() const { return state_->used.load(); }
 
 namespace {
@@ -57,6 +70,8 @@ MemoryCharge MemoryBudget::charge(uint64_t bytes, const std::string& what) {
 
 MemoryBudget& job_memory() {
   static MemoryBudget budget(Limits{}.memory);
+  static const bool grows = (budget.set_limit(Limits{}.memory, true), true);
+  (void)grows;
   return budget;
 }
 

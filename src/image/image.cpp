@@ -45,7 +45,9 @@ DecodedImage read_image_file(const std::string& path, const DecodeOptions& optio
       const ImageExtent extent = image_extent(in, file_bytes);
       if (!extent.problem.empty()) throw Error(path + ": cannot decode image: " + extent.problem);
       note = trailing_bytes_note(extent);
-      file_memory = (options.memory ? *options.memory : job_memory()).charge(extent.bytes, path + ": reading the file");
+      MemoryBudget& budget = options.memory ? *options.memory : job_memory();
+      budget.credit_input(extent.bytes);
+      file_memory = budget.charge(extent.bytes, path + ": reading the file");
       bytes.resize(size_t(extent.bytes));
       in.clear();
       in.seekg(0);

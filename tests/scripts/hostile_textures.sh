@@ -82,7 +82,7 @@ refused webp-header "header\.webp: cannot decode image: the header declares 1638
   render webp.obj -o webp.png --size 16x16
 scene short short.png
 refused png-header "short\.png: cannot decode image: the header declares 16384x16384 texels \(805306368 bytes of rows\), more than its [0-9]+ bytes of compressed data can hold" \
-  render short.obj -o short.png --size 16x16
+  render short.obj -o short_out.png --size 16x16
 
 # --help names the limit and its default.
 "$RAYFORM_BIN" render --help | tr -s ' \n' ' ' | grep -Eq "json-depth, memory;.* memory [0-9.]+ [kMG]B \(bytes the job may hold at once" \

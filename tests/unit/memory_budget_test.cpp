@@ -48,6 +48,23 @@ TEST(MemoryBudget, PassingTheLimitIsOneLineNamingWhatAndHowMuch) {
             "memory=N)");
 }
 
+TEST(MemoryBudget, ADefaultLimitGrowsWithTheFilesReadUpToHalfOfPhysicalMemory) {
+  MemoryBudget grows(1000), fixed(1000);
+  grows.set_limit(1000, true);
+  EXPECT_EQ(grows.limit(), 1000u);
+  grows.credit_input(10);
+  fixed.credit_input(10);
+  EXPECT_EQ(grows.limit(), 1000u + 10 * input_expansion);
+  EXPECT_EQ(fixed.limit(), 1000u) << "a limit set on the command line does not grow";
+  EXPECT_NO_THROW(grows.charge(1000 + 10 * input_expansion, "what the file made room for"));
+  EXPECT_THROW(fixed.charge(1001, "more than the fixed limit"), Error);
+  // However much is read, at most half of physical memory.
+  const uint64_t physical = physical_memory_bytes();
+  if (physical == 0) GTEST_SKIP() << "physical memory unknown";
+  grows.credit_input(physical);
+  EXPECT_EQ(grows.limit(), physical / 2);
+}
+
 TEST(MemoryBudget, LimitNamedMemoryDefaultsToASixteenthOfPhysicalMemory) {
   Limits l;
   const uint64_t physical = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGESIZE));
