@@ -18,14 +18,15 @@ void add_quiet_before_command(CLI::App& app) {
 
 void add_read_flags(CLI::App& command, ReadFlags& flags) {
   const Limits defaults;
-  command.add_option("--limit", flags.limits,
-                     "NAME=VALUE: raise or lower a limit on what a scene may claim (" + limit_names() +
-                         "; defaults: triangles and vertices " + std::to_string(defaults.triangles) + ", instances " +
-                         std::to_string(defaults.instances) + ", texture-texels " +
-                         std::to_string(defaults.texture_texels) + " (each side at most its square root), json-depth " +
-                         std::to_string(defaults.json_depth) + ", memory " + memory_size_text(defaults.memory) +
-                         " (bytes the job may hold at once: 1/16 of this machine's memory, growing by 16 bytes a byte of "
-                         "the files read up to 1/2; a value given here does not grow))");
+  command.add_option(
+      "--limit", flags.limits,
+      "NAME=VALUE: raise or lower a limit on what a scene may claim (" + limit_names() +
+          "; defaults: triangles and vertices " + std::to_string(defaults.triangles) + ", instances " +
+          std::to_string(defaults.instances) + ", texture-texels " + std::to_string(defaults.texture_texels) +
+          " (each side at most its square root), json-depth " + std::to_string(defaults.json_depth) + ", memory " +
+          memory_size_text(defaults.memory) +
+          " (bytes the job may hold at once: 1/16 of this machine's memory, growing by 16 bytes a byte of "
+          "the files read up to 1/2; a value given here does not grow))");
   command.add_flag("--confine", flags.confine,
                    "Read only files in the scene file's folder and below (no absolute paths, '..', symlinks "
                    "out or URIs other than data:)");
