@@ -114,6 +114,86 @@ void prepare_environment(PreparedScene& p, const PrepareOptions& options) {
   p.prefiltered_environment = prefilter_environment(p.environment);
 }
 
+// The node tree flattened into p.instances, each with its material (or the
+// default one) and its transforms; returns which meshes they use.
+std::vector<uint8_t> flatten_instances(const Scene& scene, const PrepareOptions& options, int default_material,
+                                       PreparedScene& p) {
+  std::vector<uint8_t> mesh_used(scene.meshes.size(), 0);
+  for_each_shape_node(
+      scene,
+      [&](const Node& n, const mat4& to_world) {
+        if (n.shape < 0 || n.shape >= shape_count(scene, n.shape_kind))
+          throw Error("scene: node '" + n.name + "' references a missing shape");
+        Instance inst;
+        inst.kind = n.shape_kind;
+        inst.shape = n.shape;
+        inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
+        inst.to_world = to_world;
+        if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
+        p.instances.push_back(inst);
+      },
+      options.limits.instances);
+  // Each instance's inverse transforms, by parallel tasks.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      Instance& inst = p.instances[i];
+      inst.has_transform = !is_identity(inst.to_world);
+      inst.to_object = glm::inverse(inst.to_world);
+      inst.normal_to_world = glm::transpose(mat3(inst.to_object));
+    }
+  });
+  return mesh_used;
+}
+
+// Each used mesh's BVH, built once however often it is instanced (or taken
+// from the cache). Small meshes (whose builds are one task each) are built at
+// once, large ones one after another, each by parallel tasks; under a
+// WorkShare all in mesh order, each build a collective, the same on every part.
+void build_used_meshes(const Scene& scene, const std::vector<uint8_t>& mesh_used, const PrepareOptions& options,
+                       PreparedScene& p) {
+  p.meshes.resize(scene.meshes.size());
+  p.memory = charge_mesh_memory(scene, mesh_used);  // (render_memory.h)
+  const WorkShare* share = options.share && options.share->shared() ? options.share : nullptr;
+  MeshAccelCache* cache = share ? nullptr : options.cache;
+  std::vector<size_t> to_build, small;
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    if (!mesh_used[i]) continue;
+    if (cache)
+      if (std::optional<MeshAccel> kept = take_cached_mesh_accel(*cache, scene, i, options.bvh)) {
+        p.meshes[i] = std::move(*kept);
+        continue;
+      }
+    (!share && scene.meshes[i].triangle_count() < small_mesh_triangles ? small : to_build).push_back(i);
+  }
+  tbb::parallel_for(size_t(0), small.size(), [&](size_t j) {
+    p.meshes[small[j]] = build_mesh_accel_without_duplicates(scene.meshes[small[j]], options.bvh, nullptr);
+  });
+  for (size_t i : to_build)
+    p.meshes[i] = build_mesh_accel_without_duplicates(scene.meshes[i], options.bvh, options.share);
+}
+
+// The instances' world bounds and the top-level BVH over the bounded ones;
+// planes stay outside it (p.plane_instances).
+void build_top_level(const Scene& scene, const PrepareOptions& options, PreparedScene& p) {
+  std::vector<Bounds3> bounds(p.instances.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      Instance& inst = p.instances[i];
+      if (inst.kind == ShapeKind::plane) continue;  // empty bounds: left out of the BVH
+      Bounds3 ob = object_bounds(scene, inst.kind, inst.shape, p.meshes);
+      inst.world_bounds = inst.has_transform ? transform_bounds(inst.to_world, ob) : ob;
+      bounds[i] = inst.world_bounds;
+    }
+  });
+  for (size_t i = 0; i < p.instances.size(); ++i) {
+    if (p.instances[i].kind == ShapeKind::plane) p.plane_instances.push_back(uint32_t(i));
+    else p.bounds.expand(bounds[i]);
+  }
+  BvhBuildOptions top_options = options.bvh;
+  top_options.max_leaf_size = 1;
+  p.top = build_bvh(bounds, top_options);
+}
+
 }  // namespace
 
 size_t PreparedScene::memory_bytes() const {
@@ -150,75 +230,9 @@ PreparedScene prepare_scene(const Scene& scene, const PrepareOptions& options) {
   p.materials.push_back(Material{});  // default material, for shapes with none
   const int default_material = int(p.materials.size()) - 1;
 
-  // Flatten the hierarchy.
-  std::vector<uint8_t> mesh_used(scene.meshes.size(), 0);
-  for_each_shape_node(
-      scene,
-      [&](const Node& n, const mat4& to_world) {
-        if (n.shape < 0 || n.shape >= shape_count(scene, n.shape_kind))
-          throw Error("scene: node '" + n.name + "' references a missing shape");
-        Instance inst;
-        inst.kind = n.shape_kind;
-        inst.shape = n.shape;
-        inst.material = (n.material >= 0 && n.material < int(scene.materials.size())) ? n.material : default_material;
-        inst.to_world = to_world;
-        if (n.shape_kind == ShapeKind::mesh) mesh_used[n.shape] = 1;
-        p.instances.push_back(inst);
-      },
-      options.limits.instances);
-  // Each instance's inverse transforms, by parallel tasks.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) {
-      Instance& inst = p.instances[i];
-      inst.has_transform = !is_identity(inst.to_world);
-      inst.to_object = glm::inverse(inst.to_world);
-      inst.normal_to_world = glm::transpose(mat3(inst.to_object));
-    }
-  });
-
-  // Build each used mesh once, however often it is instanced; in mesh order,
-  // which makes the shared builds (collective) the same on every part.
-  p.meshes.resize(scene.meshes.size());
-  p.memory = charge_mesh_memory(scene, mesh_used);  // (render_memory.h)
-  MeshAccelCache* cache = options.share && options.share->shared() ? nullptr : options.cache;
-  // Small meshes (whose builds are one task each) are built at once, large
-  // ones one after another, each by parallel tasks; under a WorkShare in
-  // order, each build a collective.
-  const WorkShare* share = options.share && options.share->shared() ? options.share : nullptr;
-  std::vector<size_t> to_build, small;
-  for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    if (!mesh_used[i]) continue;
-    if (cache)
-      if (std::optional<MeshAccel> kept = take_cached_mesh_accel(*cache, scene, i, options.bvh)) {
-        p.meshes[i] = std::move(*kept);
-        continue;
-      }
-    (!share && scene.meshes[i].triangle_count() < small_mesh_triangles ? small : to_build).push_back(i);
-  }
-  tbb::parallel_for(size_t(0), small.size(), [&](size_t j) {
-    p.meshes[small[j]] = build_mesh_accel_without_duplicates(scene.meshes[small[j]], options.bvh, nullptr);
-  });
-  for (size_t i : to_build)
-    p.meshes[i] = build_mesh_accel_without_duplicates(scene.meshes[i], options.bvh, options.share);
-
-  // Top level over bounded instances; planes stay outside.
-  std::vector<Bounds3> bounds(p.instances.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, p.instances.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) {
-      Instance& inst = p.instances[i];
-      if (inst.kind == ShapeKind::plane) continue;  // empty bounds: left out of the BVH
-      Bounds3 ob = object_bounds(scene, inst.kind, inst.shape, p.meshes);
-      inst.world_bounds = inst.has_transform ? transform_bounds(inst.to_world, ob) : ob;
-      bounds[i] = inst.world_bounds;
-    }
-  });
-  for (size_t i = 0; i < p.instances.size(); ++i) {
-    if (p.instances[i].kind == ShapeKind::plane) p.plane_instances.push_back(uint32_t(i));
-    else p.bounds.expand(bounds[i]);
-  }
-  BvhBuildOptions top_options = options.bvh;
-  top_options.max_leaf_size = 1;
-  p.top = build_bvh(bounds, top_options);
+  const std::vector<uint8_t> mesh_used = flatten_instances(scene, options, default_material, p);
+  build_used_meshes(scene, mesh_used, options, p);
+  build_top_level(scene, options, p);
 
   // Features, and decode only the textures that hit materials use.
   SceneFeatures& f = p.features;
