@@ -128,11 +128,11 @@ std::optional<PixelSampler> sampler_from_name(const std::string& name) {
   return value_of(name, sampler_names(), {PixelSampler::stratified, PixelSampler::random});
 }
 
-std::string quoted_names(const std::vector<std::string>& names) {
+std::string quoted_names(const std::vector<std::string>& names, const std::string& quote) {
   std::string s;
   for (size_t i = 0; i < names.size(); ++i) {
     if (i > 0) s += i + 1 == names.size() ? " or " : ", ";
-    s += "'" + names[i] + "'";
+    s += quote + names[i] + quote;
   }
   return s;
 }

@@ -65,7 +65,8 @@ std::optional<ColorEncoding> encoding_from_name(const std::string& name);
 std::optional<PixelFilter> filter_from_name(const std::string& name);
 std::optional<PixelSampler> sampler_from_name(const std::string& name);
 
-// The names quoted for a message: "'box' or 'tent'", "'auto', 'raw' or 'srgb'".
-std::string quoted_names(const std::vector<std::string>& names);
+// The names listed for a message, each between `quote`s: "'box' or 'tent'",
+// "'auto', 'raw' or 'srgb'"; with quote "": "stratified or random".
+std::string quoted_names(const std::vector<std::string>& names, const std::string& quote = "'");
 
 }  // namespace rayform

@@ -157,6 +157,7 @@ TEST(JobArguments, QuotedNames) {
   EXPECT_EQ(quoted_names({"box", "tent"}), "'box' or 'tent'");
   EXPECT_EQ(quoted_names(tone_map_names()), "'khr-neutral', 'aces' or 'none'");
   EXPECT_EQ(quoted_names({"only"}), "'only'");
+  EXPECT_EQ(quoted_names(sampler_names(), ""), "stratified or random");
 }
 
 }  // namespace
