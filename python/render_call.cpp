@@ -104,7 +104,8 @@ std::string choice(const py::handle& value, const char* what, const std::vector<
 }
 
 // The job of a render call: the same fields the command line's flags fill
-// (cli/render_command.cpp), checked under the argument names.
+// (cli/render_command.cpp), checked by the same functions (job_arguments.h,
+// render_options_problem) and worded under the argument names.
 RenderJob job_from_arguments(const py::kwargs& args, Wanted& wanted) {
   RenderJob job;
   std::optional<float> env_intensity, env_rotate;
