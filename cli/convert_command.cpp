@@ -2,11 +2,11 @@
 // course .txt, OBJ+MTL, .gltf or .glb (formats by extension; docs/convert.md).
 // What the target cannot hold is printed on stderr, one "note:" line each.
 #include "commands.h"
-#include "rayform/importers/course_txt/course_writer.h"
 #include "course_args.h"
 #include "messages.h"
 #include "rayform/distributed/ranks.h"
 #include "read_flags.h"
+#include "rayform/pipeline/convert_checks.h"
 #include "rayform/pipeline/job_outputs.h"
 #include "run_job.h"
 #include "rayform/base/error.h"
@@ -48,27 +48,14 @@ std::string counts(const Scene& scene) {
 void check_out_dir(const ConvertArgs& a) {
   const std::string& dir = a.save.side_folder;
   if (!a.out_dir_given) return;
-  std::error_code ec;
   if (dir.empty()) throw UsageError("--out-dir expects a folder, got ''");
-  if (!fs::is_directory(dir, ec)) throw UsageError("--out-dir: folder '" + dir + "' does not exist");
-  const std::string ext = lower_extension(a.output);
-  if (ext == ".glb") throw UsageError("--out-dir: a .glb holds everything in one file: there are no side files");
-  if (ext == ".gltf" && a.save.embed)
-    throw UsageError("--out-dir: with --embed the .gltf holds everything: there are no side files");
-  if (ext == ".txt")
-    if (std::string problem = course_side_folder_problem(a.output, dir); !problem.empty())
-      throw UsageError("--out-dir: " + problem);
+  if (std::string problem = side_folder_problem(a.output, dir, a.save.embed, "--embed"); !problem.empty())
+    throw UsageError("--out-dir: " + problem);
 }
 
 void run_convert(const ConvertArgs& a) {
-  std::error_code ec;
-  if (fs::exists(a.output, ec) && fs::equivalent(a.input, a.output, ec))
-    throw UsageError(a.output + ": the output is the input file; choose another name");
-  try {
-    scene_format_from_path(a.output);  // unknown output extension: fail before reading
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
+  // Before reading: an output that is the input or has an unknown extension.
+  if (std::string problem = convert_output_problem(a.input, a.output); !problem.empty()) throw UsageError(problem);
   check_output_folder(a.output, "the scene");
   check_out_dir(a);
   LoadOptions lo{dialect_from_string(a.dialect)};
@@ -78,9 +65,7 @@ void run_convert(const ConvertArgs& a) {
 
   SaveOptions o = a.save;
   o.shape_extras = !a.tessellate_only;
-  // The course dialect to write: as asked, else the one the input was read in.
-  o.dialect = dialect_from_string(a.dialect);
-  if (!o.dialect && loaded.format == SceneFormat::course_txt) o.dialect = loaded.dialect;
+  o.dialect = convert_dialect(dialect_from_string(a.dialect), loaded);
   std::vector<std::string> messages;
   const std::string ext = lower_extension(a.output);
   if (o.embed && ext != ".gltf")
@@ -92,6 +77,7 @@ void run_convert(const ConvertArgs& a) {
   SaveResult r = save_scene(loaded.scene, a.output, o, &messages);
   // What came into the output from outside the input's folder (a scene from
   // elsewhere may name any file the user can read; --confine refuses them).
+  std::error_code ec;
   const fs::path folder = fs::absolute(a.input, ec).parent_path();
   std::set<std::string> external;
   for (const Mesh& m : loaded.scene.meshes)
@@ -121,7 +107,7 @@ void add_convert_command(CLI::App& app) {
   c->add_flag("--flatten", a->save.flatten, "Bake every transform into the geometry (one flat list of shapes)");
   c->add_flag("--embed", a->save.embed, "glTF: buffers and images inside the .gltf (a .glb always holds them)");
   c->add_option("--sphere-segments", a->save.sphere_segments, "Longitudes of tessellated spheres (bands: half as many)")
-      ->check(CLI::Range(3, 4096))
+      ->check(CLI::Range(min_sphere_segments, max_sphere_segments))
       ->capture_default_str();
   c->add_option("--dialect", a->dialect, "Course dialect to read and write (default: the input's, else as needed)")
       ->check(CLI::IsMember({"2012", "2019", "a5"}));

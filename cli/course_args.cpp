@@ -1,5 +1,6 @@
 #include "course_args.h"
 #include "commands.h"
+#include "rayform/pipeline/job_arguments.h"
 
 #include <cerrno>
 #include <cmath>
@@ -87,10 +88,11 @@ CourseCommand parse_course_command_line(const std::vector<std::string>& v) {
     else if (f == "-jitter") job.render.grid.jitter = true;
     else if (f == "-filter") job.render.grid.gaussian = true;
     else if (f == "-sampler") {
-      std::string s = a.take(f, "stratified or random");
-      if (s != "stratified" && s != "random")
-        throw UsageError("-sampler expects stratified or random, got '" + s + "'");
-      job.render.sampler = s == "random" ? PixelSampler::random : PixelSampler::stratified;
+      const std::string names = quoted_names(sampler_names(), "");
+      std::string s = a.take(f, names.c_str());
+      const std::optional<PixelSampler> sampler = sampler_from_name(s);
+      if (!sampler) throw UsageError("-sampler expects " + names + ", got '" + s + "'");
+      job.render.sampler = *sampler;
     } else if (f == "-target-error") {
       job.render.target_error = a.real(f, "a positive error per channel");
     } else if (f == "-max-spp") {

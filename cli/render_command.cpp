@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "course_args.h"
 #include "output_names.h"
+#include "rayform/pipeline/job_arguments.h"
 #include "rayform/distributed/ranks.h"
 #include "read_flags.h"
 #include "render_batch.h"
@@ -46,36 +47,16 @@ DepthOutput parse_depth(const std::string& s) {
   return d;
 }
 
-// "A,B,..." -> the numbers, all finite; none when anything else is in the way.
-std::optional<std::vector<float>> parse_numbers(const std::string& s) {
-  std::vector<float> v;
-  size_t pos = 0;
-  try {
-    for (;;) {
-      size_t used = 0;
-      v.push_back(std::stof(s.substr(pos), &used));
-      pos += used;
-      if (pos == s.size()) break;
-      if (s[pos] != ',') return std::nullopt;
-      ++pos;
-    }
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (!std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); })) return std::nullopt;
-  return v;
-}
-
 // "X,Y,Z" -> vector.
 vec3 parse_vec3(const std::string& s, const char* option) {
-  std::optional<std::vector<float>> v = parse_numbers(s);
+  std::optional<std::vector<float>> v = numbers_from_text(s);
   if (!v || v->size() != 3) throw UsageError(std::string(option) + " expects three numbers X,Y,Z, got '" + s + "'");
   return vec3((*v)[0], (*v)[1], (*v)[2]);
 }
 
 // "AZ,EL" or "AZ,EL,DIST" -> orbit, checked by orbit_problem.
 Orbit parse_orbit(const std::string& s) {
-  std::optional<std::vector<float>> v = parse_numbers(s);
+  std::optional<std::vector<float>> v = numbers_from_text(s);
   if (!v || v->size() < 2 || v->size() > 3)
     throw UsageError("--orbit expects two or three numbers AZ,EL[,DIST], got '" + s + "'");
   Orbit orbit{(*v)[0], (*v)[1], v->size() == 3 ? std::optional<float>((*v)[2]) : std::nullopt};
@@ -85,20 +66,12 @@ Orbit parse_orbit(const std::string& s) {
 }
 
 // "R,G,B" with each 0..1, or "#RRGGBB" in hexadecimal (00..ff, as colour
-// pickers show it) -> display values 0..1.
+// pickers show it) -> display values 0..1 (job_arguments.h).
 vec3 parse_background(const std::string& s) {
-  const std::string expected = "--background expects R,G,B with each 0..1 or #RRGGBB, got '" + s + "'";
-  if (!s.empty() && s[0] == '#') {
-    if (s.size() != 7 || s.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
-      throw UsageError(expected);
-    vec3 c;
-    for (int k = 0; k < 3; ++k) c[k] = float(std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16)) / 255.f;
-    return c;
-  }
-  std::optional<std::vector<float>> v = parse_numbers(s);
-  if (!v || v->size() != 3 || !std::all_of(v->begin(), v->end(), [](float x) { return x >= 0.f && x <= 1.f; }))
-    throw UsageError(expected);
-  return vec3((*v)[0], (*v)[1], (*v)[2]);
+  const std::optional<vec3> c = background_from_text(s);
+  if (!c || !background_problem(*c).empty())
+    throw UsageError("--background expects R,G,B with each 0..1 or #RRGGBB, got '" + s + "'");
+  return *c;
 }
 
 struct RenderArgs {
@@ -120,25 +93,23 @@ struct RenderArgs {
 // The environment the flags ask for: --env FILE, studio or none, and its
 // --env-intensity and --env-rotate (which alone change the default's).
 std::optional<Environment> parse_environment(const RenderArgs& a) {
-  if (a.env_option->count() == 0 && a.env_intensity_option->count() == 0 && a.env_rotate_option->count() == 0)
-    return std::nullopt;
-  if (!(a.env_intensity >= 0.f) || !std::isfinite(a.env_intensity))
-    throw UsageError("--env-intensity expects a finite number >= 0, got '" + a.env_intensity_option->as<std::string>() +
+  const bool env = a.env_option->count() > 0, intensity = a.env_intensity_option->count() > 0,
+             rotate = a.env_rotate_option->count() > 0;
+  if (std::string expected = env_intensity_problem(a.env_intensity); intensity && !expected.empty())
+    throw UsageError("--env-intensity expects " + expected + ", got '" + a.env_intensity_option->as<std::string>() +
                      "'");
-  if (!std::isfinite(a.env_rotate))
-    throw UsageError("--env-rotate expects degrees, got '" + a.env_rotate_option->as<std::string>() + "'");
-  Environment e;
-  e.intensity = a.env_intensity;
-  e.rotation_deg = a.env_rotate;
-  if (a.env_option->count() == 0 || a.env == "studio") {
-    e.source = Environment::Source::studio;
-  } else if (a.env == "none") {
-    e.source = Environment::Source::none;
-  } else {
-    e.source = Environment::Source::file;
-    e.path = a.env;
-  }
-  return e;
+  if (std::string expected = env_rotation_problem(a.env_rotate); rotate && !expected.empty())
+    throw UsageError("--env-rotate expects " + expected + ", got '" + a.env_rotate_option->as<std::string>() + "'");
+  return environment_from_arguments(env ? std::optional<std::string>(a.env) : std::nullopt,
+                                    intensity ? std::optional<float>(a.env_intensity) : std::nullopt,
+                                    rotate ? std::optional<float>(a.env_rotate) : std::nullopt);
+}
+
+// A job field's name as this command's flag: "look_from" -> "--look-from".
+std::string flag_name(const std::string& field) {
+  std::string flag = "--" + field;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
 }
 
 // Once the flags are parsed: the job completed from them, checked, and run
@@ -153,31 +124,25 @@ void run_render_args(RenderArgs& a) {
   if (!a.job.default_size) parse_size(a.size, &a.job.render.width, &a.job.render.height);
   if (!a.depth.empty()) a.job.depth = parse_depth(a.depth);
   a.job.load.dialect = dialect_from_string(a.dialect);
-  a.job.render.filter = a.filter == "tent" ? PixelFilter::tent : PixelFilter::box;
-  a.job.render.sampler = a.sampler == "random" ? PixelSampler::random : PixelSampler::stratified;
-  a.job.color = a.color == "raw"    ? ColorEncoding::raw
-                : a.color == "srgb" ? ColorEncoding::srgb
-                                    : ColorEncoding::automatic;
-  if (orbit->count() > 0) {  // given, even as ''
-    if (!a.look_from.empty() || !a.look_at.empty())
-      throw UsageError("--orbit places the camera itself: it cannot be combined with --look-from or --look-at");
-    a.job.orbit = parse_orbit(a.orbit);
-  }
+  // The names are checked by the options (CLI::IsMember of the same lists).
+  a.job.render.filter = *filter_from_name(a.filter);
+  a.job.render.sampler = *sampler_from_name(a.sampler);
+  a.job.color = *encoding_from_name(a.color);
   if (frames->count() > 0 && (camera->count() > 0 || !a.look_from.empty() || !a.look_at.empty()))
     throw UsageError(
         "--frames turns the --orbit camera: it cannot be combined with --camera, --look-from or "
         "--look-at");
-  if ((a.job.orbit || a.job.frame) && camera->count() > 0)
-    throw UsageError(std::string(a.job.orbit ? "--orbit" : "--frame") +
-                     " replaces the file's cameras: it cannot be combined with --camera");
+  if (orbit->count() > 0) a.job.orbit = parse_orbit(a.orbit);  // given, even as ''
   if (!a.look_from.empty()) a.job.camera_adjust.look_from = parse_vec3(a.look_from, "--look-from");
   if (!a.look_at.empty()) a.job.camera_adjust.look_at = parse_vec3(a.look_at, "--look-at");
+  if (std::string conflict = camera_conflict(a.job, camera->count() > 0, flag_name); !conflict.empty())
+    throw UsageError(conflict);
   if (!a.up.empty()) a.job.camera_adjust.up = parse_vec3(a.up, "--up");
   if (background->count() > 0) a.job.background = parse_background(a.background);
   a.job.environment = parse_environment(a);
   if (fov->count() > 0) {
-    if (!(a.fov > 0.f && a.fov < 180.f))
-      throw UsageError("--fov expects degrees strictly between 0 and 180, got '" + fov->as<std::string>() + "'");
+    if (std::string expected = fov_problem(a.fov); !expected.empty())
+      throw UsageError("--fov expects " + expected + ", got '" + fov->as<std::string>() + "'");
     a.job.camera_adjust.fov_deg = a.fov;
   }
   apply_read_flags(a.read, a.job.load);
@@ -244,12 +209,12 @@ void add_render_command(CLI::App& app) {
           ", a larger N renders as " + std::to_string(max_bounces) + " with a note");
   render->add_option("--spp", job.render.spp, "Samples per pixel (anti-aliasing)");
   render->add_option("--filter", a->filter, "Pixel filter for --spp > 1")
-      ->check(CLI::IsMember({"box", "tent"}))
+      ->check(CLI::IsMember(filter_names()))
       ->capture_default_str();
   render
       ->add_option("--sampler", a->sampler,
                    "Sub-pixel positions: stratified (jittered strata) or random (independent uniform, also at 1 spp)")
-      ->check(CLI::IsMember({"stratified", "random"}))
+      ->check(CLI::IsMember(sampler_names()))
       ->capture_default_str();
   render->add_option("--target-error", job.render.target_error,
                      "Adaptive sampling: rounds of stratified samples per pixel (" +
@@ -263,7 +228,7 @@ void add_render_command(CLI::App& app) {
       ->add_option("--color", a->color,
                    "Colour encoding: auto (course scenes raw; OBJ and glTF sRGB in 8-bit files, linear and unclamped "
                    "in float files: exr, hdr, tif), raw (as computed), srgb (encoded, clamped to 0..1)")
-      ->check(CLI::IsMember({"auto", "raw", "srgb"}))
+      ->check(CLI::IsMember(encoding_names()))
       ->capture_default_str();
   render
       ->add_option("--exposure", job.render.exposure_ev,
@@ -276,7 +241,7 @@ void add_render_command(CLI::App& app) {
                        "Tone map of 8-bit colour outputs (float files stay linear): khr-neutral (Khronos PBR Neutral: "
                        "colours kept, highlights compressed), aces (Hill's ACES filmic fit) or none (clamped) "
                        "(default: khr-neutral for files with physically based materials, else none)")
-          ->check(CLI::IsMember({"khr-neutral", "aces", "none"}));
+          ->check(CLI::IsMember(tone_map_names()));
   render->add_flag("--frame", job.frame,
                    "Ignore the file's cameras: the default camera, framing the scene's bounds from the +z side (from "
                    "above at 45 degrees when they are flat in the xz plane, from the +x side when flat in yz)");

@@ -2,11 +2,11 @@
 // writes them (`rayform convert`; image/image.h), to a temporary renamed into
 // place.
 #include "module_parts.h"
-#include "rayform/base/error.h"
 #include "rayform/base/file_extension.h"
 #include "rayform/image/image.h"
 #include "rayform/image/interrupt_cleanup.h"
 #include "rayform/importers/scene_writer.h"
+#include "rayform/pipeline/convert_checks.h"
 #include "rayform/pipeline/job_outputs.h"
 
 #include <pybind11/numpy.h>
@@ -14,11 +14,9 @@
 
 #include <csignal>
 #include <cstring>
-#include <filesystem>
 
 namespace rayform::python {
 namespace {
-namespace fs = std::filesystem;
 
 py::dict convert(const std::string& src, const std::string& dst, const py::kwargs& kwargs) {
   SaveOptions save;
@@ -30,28 +28,24 @@ py::dict convert(const std::string& src, const std::string& dst, const py::kwarg
     else if (name == "embed") save.embed = value.cast<bool>();
     else if (name == "sphere_segments") {
       save.sphere_segments = value.cast<int>();
-      if (save.sphere_segments < 3 || save.sphere_segments > 4096)
-        throw py::value_error("sphere_segments: expected 3 to 4096, got " + std::to_string(save.sphere_segments));
+      if (save.sphere_segments < min_sphere_segments || save.sphere_segments > max_sphere_segments)
+        throw py::value_error("sphere_segments: expected " + std::to_string(min_sphere_segments) + " to " +
+                              std::to_string(max_sphere_segments) + ", got " + std::to_string(save.sphere_segments));
     } else if (name == "tessellate_only") save.shape_extras = !value.cast<bool>();
     else if (name == "out_dir") out_dir = path_argument(value, "out_dir");
     else load[key] = value;  // dialect, limits, ...: as load()
   }
-  std::error_code ec;
-  if (fs::exists(dst, ec) && fs::equivalent(src, dst, ec))
-    throw py::value_error("dst: " + dst + ": the output is the input file; choose another name");
-  try {
-    scene_format_from_path(dst);  // unknown output extension: fail before reading
-  } catch (const Error& e) {
-    throw py::value_error(std::string("dst: ") + e.what());
-  }
+  // Before reading, as the command line (convert_checks.h).
+  if (std::string problem = convert_output_problem(src, dst); !problem.empty())
+    throw py::value_error("dst: " + problem);
   check_output_folder(dst, "the scene");
   if (out_dir) {
-    if (!fs::is_directory(*out_dir, ec)) throw py::value_error("out_dir: folder '" + *out_dir + "' does not exist");
+    if (std::string problem = side_folder_problem(dst, *out_dir, save.embed, "embed=True"); !problem.empty())
+      throw py::value_error("out_dir: " + problem);
     save.side_folder = *out_dir;
   }
   SceneObject scene = load_scene_object(src, load, false);
-  save.dialect = scene.load.dialect;
-  if (!save.dialect && scene.loaded->format == SceneFormat::course_txt) save.dialect = scene.loaded->dialect;
+  save.dialect = convert_dialect(scene.load.dialect, *scene.loaded);
   std::vector<std::string> messages;
   SaveResult r;
   {

@@ -8,6 +8,7 @@
 #include "rayform/base/error.h"
 #include "rayform/base/thread_limit.h"
 #include "rayform/image/image_file.h"
+#include "rayform/pipeline/job_arguments.h"
 #include "rayform/pipeline/render_job.h"
 #include "rayform/render/aov_images.h"
 #include "rayform/render/color_output.h"
@@ -16,6 +17,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -78,24 +80,32 @@ struct Wanted {
   bool float_pass() const { return color || depth || normal || albedo; }
 };
 
-// background=: (r, g, b) display values 0..1, or "#RRGGBB".
+// background=: (r, g, b) display values 0..1, or "#RRGGBB" (job_arguments.h).
 vec3 background_argument(const py::handle& value) {
   if (py::isinstance<py::str>(value)) {
     const std::string s = value.cast<std::string>();
-    if (s.size() != 7 || s[0] != '#' || s.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
-      throw py::value_error("background: expected (r, g, b) with each 0..1 or '#RRGGBB', got '" + s + "'");
-    vec3 c;
-    for (int k = 0; k < 3; ++k) c[k] = float(std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16)) / 255.f;
-    return c;
+    const std::optional<vec3> c = background_from_hex(s);
+    if (!c) throw py::value_error("background: expected (r, g, b) with each 0..1 or '#RRGGBB', got '" + s + "'");
+    return *c;
   }
   const std::vector<float> v = numbers(value, "background", 3, 3);
-  for (float x : v)
-    if (!(x >= 0.f && x <= 1.f)) throw py::value_error("background: expected each of r, g, b in 0..1");
-  return vec3(v[0], v[1], v[2]);
+  const vec3 c(v[0], v[1], v[2]);
+  if (std::string expected = background_problem(c); !expected.empty())
+    throw py::value_error("background: expected " + expected);
+  return c;
+}
+
+// A name among `names` (job_arguments.h), for `what`.
+std::string choice(const py::handle& value, const char* what, const std::vector<std::string>& names) {
+  const std::string s = text(value, what);
+  if (std::find(names.begin(), names.end(), s) == names.end())
+    throw py::value_error(std::string(what) + ": expected " + quoted_names(names) + ", got '" + s + "'");
+  return s;
 }
 
 // The job of a render call: the same fields the command line's flags fill
-// (cli/render_command.cpp), checked under the argument names.
+// (cli/render_command.cpp), checked by the same functions (job_arguments.h,
+// render_options_problem) and worded under the argument names.
 RenderJob job_from_arguments(const py::kwargs& args, Wanted& wanted) {
   RenderJob job;
   std::optional<float> env_intensity, env_rotate;
@@ -130,7 +140,7 @@ RenderJob job_from_arguments(const py::kwargs& args, Wanted& wanted) {
                            : job.camera_adjust.up) = p;
     } else if (name == "fov") {
       const float f = number(value, n);
-      if (!(f > 0.f && f < 180.f)) throw py::value_error("fov: expected degrees strictly between 0 and 180");
+      if (std::string expected = fov_problem(f); !expected.empty()) throw py::value_error("fov: expected " + expected);
       job.camera_adjust.fov_deg = f;
     } else if (name == "spp") {
       job.render.spp = integer(value, n);
@@ -152,34 +162,24 @@ RenderJob job_from_arguments(const py::kwargs& args, Wanted& wanted) {
     } else if (name == "exposure") {
       job.render.exposure_ev = number(value, n);
     } else if (name == "tonemap") {
-      const std::string t = text(value, n);
-      const std::optional<ToneMap> map = tone_map_from_name(t);
-      if (!map) throw py::value_error("tonemap: expected 'khr-neutral', 'aces' or 'none', got '" + t + "'");
-      job.render.tone_map = *map;
+      job.render.tone_map = *tone_map_from_name(choice(value, n, tone_map_names()));
       job.default_tone_map = false;
     } else if (name == "encoding") {
-      const std::string e = text(value, n);
-      if (e != "auto" && e != "raw" && e != "srgb")
-        throw py::value_error("encoding: expected 'auto', 'raw' or 'srgb', got '" + e + "'");
-      job.color = e == "raw" ? ColorEncoding::raw : e == "srgb" ? ColorEncoding::srgb : ColorEncoding::automatic;
+      job.color = *encoding_from_name(choice(value, n, encoding_names()));
     } else if (name == "filter") {
-      const std::string f = text(value, n);
-      if (f != "box" && f != "tent") throw py::value_error("filter: expected 'box' or 'tent', got '" + f + "'");
-      job.render.filter = f == "tent" ? PixelFilter::tent : PixelFilter::box;
+      job.render.filter = *filter_from_name(choice(value, n, filter_names()));
     } else if (name == "sampler") {
-      const std::string s = text(value, n);
-      if (s != "stratified" && s != "random")
-        throw py::value_error("sampler: expected 'stratified' or 'random', got '" + s + "'");
-      job.render.sampler = s == "random" ? PixelSampler::random : PixelSampler::stratified;
+      job.render.sampler = *sampler_from_name(choice(value, n, sampler_names()));
     } else if (name == "env") {
       env = py::isinstance<py::str>(value) ? value.cast<std::string>() : path_argument(value, n);
     } else if (name == "env_intensity") {
       env_intensity = number(value, n);
-      if (!(*env_intensity >= 0.f) || !std::isfinite(*env_intensity))
-        throw py::value_error("env_intensity: expected a finite number >= 0");
+      if (std::string expected = env_intensity_problem(*env_intensity); !expected.empty())
+        throw py::value_error("env_intensity: expected " + expected);
     } else if (name == "env_rotate") {
       env_rotate = number(value, n);
-      if (!std::isfinite(*env_rotate)) throw py::value_error("env_rotate: expected degrees");
+      if (std::string expected = env_rotation_problem(*env_rotate); !expected.empty())
+        throw py::value_error("env_rotate: expected " + expected);
     } else if (name == "aovs") {
       if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
         throw py::type_error("aovs: expected a sequence of 'depth', 'normal', 'albedo', got " + type_name(value));
@@ -198,23 +198,11 @@ RenderJob job_from_arguments(const py::kwargs& args, Wanted& wanted) {
       throw py::type_error("render() got an unexpected keyword argument '" + name + "'");
     }
   }
-  if (job.orbit && (job.camera_adjust.look_from || job.camera_adjust.look_at))
-    throw py::value_error("orbit places the camera itself: it cannot be combined with look_from or look_at");
-  if ((job.orbit || job.frame) && camera_given)
-    throw py::value_error(std::string(job.orbit ? "orbit" : "frame") +
-                          " replaces the file's cameras: it cannot be combined with camera");
-  if (env || env_intensity || env_rotate) {
-    Environment e;
-    e.intensity = env_intensity.value_or(1.f);
-    e.rotation_deg = env_rotate.value_or(0.f);
-    if (!env || *env == "studio") e.source = Environment::Source::studio;
-    else if (*env == "none") e.source = Environment::Source::none;
-    else {
-      e.source = Environment::Source::file;
-      e.path = *env;
-    }
-    job.environment = e;
-  }
+  // The keywords are the job's field names (job_arguments.h).
+  if (std::string conflict = camera_conflict(job, camera_given, [](const std::string& field) { return field; });
+      !conflict.empty())
+    throw py::value_error(conflict);
+  job.environment = environment_from_arguments(env, env_intensity, env_rotate);
   // The one check of the render parameters (render.h), under the argument names.
   if (std::string problem = render_options_problem(job.render); !problem.empty()) throw py::value_error(problem);
   if (!wanted.float_pass() && !wanted.color8) throw py::value_error("color, color8 and aovs: nothing asked for");

@@ -221,6 +221,23 @@ def test_convert_writes_what_the_program_writes(rayform, tmp_path):
         rayform.convert(GLB, tmp_path / "x.unknown")
 
 
+def test_convert_checks_out_dir_as_the_program(rayform, tmp_path):
+    # The same checks as `rayform convert --out-dir` (pipeline/convert_checks.h), before anything is read.
+    (tmp_path / "assets").mkdir()
+    with pytest.raises(ValueError) as e:
+        rayform.convert(GLB, tmp_path / "m.obj", out_dir=tmp_path / "nothere")
+    assert str(e.value) == f"out_dir: folder '{tmp_path / 'nothere'}' does not exist"
+    with pytest.raises(ValueError) as e:
+        rayform.convert(GLB, tmp_path / "m.glb", out_dir=tmp_path / "assets")
+    assert str(e.value) == "out_dir: a .glb holds everything in one file: there are no side files"
+    with pytest.raises(ValueError) as e:
+        rayform.convert(GLB, tmp_path / "m.gltf", out_dir=tmp_path / "assets", embed=True)
+    assert str(e.value) == "out_dir: with embed=True the .gltf holds everything: there are no side files"
+    assert not list(tmp_path.glob("m.*")) and not list((tmp_path / "assets").iterdir())
+    r = rayform.convert(GLB, tmp_path / "m.gltf", out_dir=tmp_path / "assets")
+    assert r["files"][0] == str(tmp_path / "m.gltf") and list((tmp_path / "assets").iterdir())
+
+
 def test_write_image_round_trips(rayform, tmp_path):
     r = rayform.render(GLB, size=SIZE, color8=True, transparent=True)
     rayform.write_image(tmp_path / "a.png", r["color8"])
