@@ -242,6 +242,13 @@ TEST(HostileObj, TextWithoutLineEndsOrFacesFailsAtOnceWithoutBecomingResident) {
     EXPECT_LT(peak_memory_kb(), before + 100 * 1024);  // at most 64 MB read
   }
   fs::remove(zeros);
+  // The same after three lines, ended by "\r\n", a lone '\r' and '\n': line 4.
+  const fs::path late = dir / "late.obj";
+  std::ofstream(late, std::ios::binary) << "v 0 0 0\r\nv 1 0 0\rv 0 1 0\n";
+  fs::resize_file(late, size_t(100) << 20);
+  EXPECT_EQ(error_of([&] { read_obj_scene(late.string()); }),
+            late.string() + ":4: line longer than 67108864 bytes (not an OBJ text)");
+  fs::remove(late);
   // 200 MB of lines without a face: read once, let go behind the walk.
   const fs::path lines = dir / "lines.obj";
   {

@@ -558,6 +558,13 @@ TEST_F(ObjFiles, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lines), lines + ": OBJ file has no faces");
 }
 
+TEST_F(ObjFiles, LinesEndedByALoneCarriageReturnHoldTheirFaces) {
+  // Old Mac line ends, and an indented face: the bounds walk finds the face.
+  const Scene s = read_obj_scene(file("cr.obj", "v 0 0 0\rv 1 0 0\r\nv 0 1 0\r \tf 1 2 3\r"));
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].indices.size(), 3u);
+}
+
 // Mutated files: each either loads or throws rayform::Error; never crashes
 // (run under AddressSanitizer too).
 TEST_F(ObjFiles, MutatedFilesLoadOrFailCleanly) {
