@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <string_view>
 
 namespace rayform::obj {
@@ -35,10 +36,29 @@ const char* find_line_end(const char* p, size_t n) {
     if (p[i] == '\n' || p[i] == '\r') return p + i;
   return nullptr;
 }
+
+// Whether a line "f <blank>..." begins right after a '\n' in the first
+// max_obj_line_bytes bytes. Then no line before it is longer than the bound,
+// and it is a face line: the walk below would stop at it or at an earlier
+// face. One memchr for 'f' over lines of numbers (which hold none).
+bool early_face(std::string_view text) {
+  const char* data = text.data();
+  const size_t n = std::min(text.size(), max_obj_line_bytes);
+  for (size_t p = 1; p + 1 < n;) {
+    const char* f = static_cast<const char*>(std::memchr(data + p, 'f', n - 1 - p));
+    if (!f) return false;
+    const size_t q = size_t(f - data);
+    if (data[q - 1] == '\n' && blank(data[q + 1])) return true;
+    p = q + 1;
+  }
+  return false;
+}
+
 }  // namespace
 
 void check_obj_text_bounds(const FileBytes& file, const std::string& path) {
   const std::string_view text = file.view();
+  if (early_face(text)) return;
   const char* data = text.data();
   size_t line = 1, dropped = 0;
   for (size_t p = 0; p < text.size(); ++line) {

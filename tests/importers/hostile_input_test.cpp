@@ -249,6 +249,13 @@ TEST(HostileObj, TextWithoutLineEndsOrFacesFailsAtOnceWithoutBecomingResident) {
   EXPECT_EQ(error_of([&] { read_obj_scene(late.string()); }),
             late.string() + ":4: line longer than 67108864 bytes (not an OBJ text)");
   fs::remove(late);
+  // A line that only starts with 'f' after a '\n' is not a face line: the walk goes on to line 3.
+  const fs::path not_face = dir / "not_face.obj";
+  std::ofstream(not_face, std::ios::binary) << "v 0 0 0\nfoo 1 2 3\n";
+  fs::resize_file(not_face, size_t(100) << 20);
+  EXPECT_EQ(error_of([&] { read_obj_scene(not_face.string()); }),
+            not_face.string() + ":3: line longer than 67108864 bytes (not an OBJ text)");
+  fs::remove(not_face);
   // 200 MB of lines without a face: read once, let go behind the walk.
   const fs::path lines = dir / "lines.obj";
   {
