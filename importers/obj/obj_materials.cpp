@@ -5,6 +5,8 @@
 #include "rayform/importers/obj/obj_side_files.h"
 #include "rayform/importers/referenced_files.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <fstream>
 #include <set>
@@ -18,6 +20,24 @@ namespace {
 // enough to read, dark enough that a head-on light does not clip it.
 constexpr float default_grey = 0.8f;
 
+// Every offset of `word` in `text`, in order. Blocks of the text are searched
+// in parallel: this is the first pass over a large file's mapped pages, and
+// their faults are shared among the threads.
+std::vector<size_t> find_every(std::string_view text, std::string_view word) {
+  constexpr size_t block = size_t(1) << 20;
+  const size_t blocks = (text.size() + block - 1) / block;
+  std::vector<std::vector<size_t>> found(blocks);
+  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+    const size_t begin = b * block, end = std::min(text.size(), begin + block + word.size() - 1);
+    const std::string_view part = text.substr(begin, end - begin);
+    for (size_t at = part.find(word); at != std::string_view::npos; at = part.find(word, at + 1))
+      found[b].push_back(begin + at);  // starts in the block: the word.size() - 1 bytes past it cannot hold one
+  });
+  std::vector<size_t> all;
+  for (const std::vector<size_t>& f : found) all.insert(all.end(), f.begin(), f.end());
+  return all;
+}
+
 }  // namespace
 
 ObjMaterials::ObjMaterials(const std::string& path, const fs::path& dir, const FileAccess& access, Scene& scene,
@@ -27,7 +47,7 @@ ObjMaterials::ObjMaterials(const std::string& path, const fs::path& dir, const F
 void ObjMaterials::load_libraries(std::string_view text) {
   size_t line_no = 1, counted_to = 0;  // line_no: the line at offset counted_to
   std::set<std::string> loaded;
-  for (size_t at = text.find("mtllib"); at != std::string_view::npos; at = text.find("mtllib", at + 6)) {
+  for (const size_t at : find_every(text, "mtllib")) {
     const size_t newline_before = text.rfind('\n', at);
     const size_t line_start = newline_before == std::string_view::npos ? 0 : newline_before + 1;
     const size_t b = at - line_start;  // where the word starts in its line

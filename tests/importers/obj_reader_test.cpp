@@ -558,6 +558,33 @@ TEST_F(ObjFiles, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lines), lines + ": OBJ file has no faces");
 }
 
+TEST_F(ObjFiles, MtllibLinesAcrossTheSearchBlocksAreAllFound) {
+  // The libraries are looked for in blocks of 1 MiB searched at once: lines
+  // starting just before, across and right at a block's end all count, once
+  // each (a missing library is one warning naming its line: 2, 4 and 6).
+  const size_t block = size_t(1) << 20;
+  std::string text;
+  for (size_t k = 0; k < 3; ++k) {
+    const size_t at = (k + 1) * block - 3 + k * 3;  // the word starts 3 before, at, and 3 after a block's end
+    text += "#" + std::string(at - text.size() - 2, 'x') + "\n";
+    text += "mtllib gone" + std::to_string(k) + ".mtl\n";
+  }
+  text += "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string path = file("blocks.obj", text);
+  std::vector<std::string> warnings;
+  read_obj_scene(path, {}, &warnings);
+  std::vector<std::string> missing;
+  for (const std::string& w : warnings)
+    if (w.find("cannot find material library") != std::string::npos) missing.push_back(w);
+  ASSERT_EQ(missing.size(), 3u) << testing::PrintToString(warnings);
+  for (size_t k = 0; k < 3; ++k)
+    EXPECT_EQ(missing[k].rfind(path + ":" + std::to_string(2 * k + 2) + ": cannot find material library 'gone" +
+                                   std::to_string(k) + ".mtl'",
+                               0),
+              0u)
+        << missing[k];
+}
+
 TEST_F(ObjFiles, LinesEndedByALoneCarriageReturnHoldTheirFaces) {
   // Old Mac line ends, and an indented face: the bounds walk finds the face.
   const Scene s = read_obj_scene(file("cr.obj", "v 0 0 0\rv 1 0 0\r\nv 0 1 0\r \tf 1 2 3\r"));
