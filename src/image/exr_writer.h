@@ -16,7 +16,7 @@
 namespace rayform {
 
 struct ExrOptions {
-  int level = 1;             // libdeflate's compression level, 1 to 12 (1: the fewest instructions, docs/performance.md)
+  int level = 2;             // libdeflate's compression level, 1 to 12 (2: the least CPU time, docs/performance.md)
   std::string capture_date;  // capDate, "YYYY:MM:DD HH:MM:SS"; empty: the local time now
 };
 
