@@ -75,7 +75,7 @@ MemoryBudget& job_memory() {
   return budget;
 }
 
-std::string memory_size_text(uint64_t bytes) {
+std::string memory_size_text(uint64_t bytes, SizeDigits digits) {
   const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
   double v = double(bytes);
   int u = 0;
@@ -84,8 +84,12 @@ std::string memory_size_text(uint64_t bytes) {
     ++u;
   }
   char buf[32];
-  // Three significant digits from kB on: "805 MB", "1.50 GB", "12.3 GB".
-  std::snprintf(buf, sizeof buf, u == 0 || v >= 100 ? "%.0f %s" : v >= 10 ? "%.1f %s" : "%.2f %s", v, units[u]);
+  const char* format = u == 0                              ? "%.0f %s"
+                       : digits == SizeDigits::one_decimal ? "%.1f %s"
+                       : v >= 100                          ? "%.0f %s"
+                       : v >= 10                           ? "%.1f %s"
+                                                           : "%.2f %s";
+  std::snprintf(buf, sizeof buf, format, v, units[u]);
   return buf;
 }
 

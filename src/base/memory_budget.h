@@ -73,7 +73,12 @@ inline constexpr uint64_t input_expansion = 16;
 // until the command line sets it (set_limit).
 MemoryBudget& job_memory();
 
-// "2.15 GB", "512 MB", "64.0 kB": decimal units, three significant digits.
-std::string memory_size_text(uint64_t bytes);
+// How a size's number is written from kB on.
+enum class SizeDigits {
+  significant3,  // three significant digits: "2.15 GB", "512 MB", "64.0 kB"
+  one_decimal,   // one decimal: "2.1 GB", "512.0 MB", "64.0 kB"
+};
+// A size in bytes in decimal units (bytes, kB, MB, ... EB); below 1 kB whole bytes.
+std::string memory_size_text(uint64_t bytes, SizeDigits digits = SizeDigits::significant3);
 
 }  // namespace rayform

@@ -2,28 +2,12 @@
 
 #include "rayform/image/image_decoders.h"
 #include "rayform/base/error.h"
+#include "rayform/base/memory_budget.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace rayform {
-
-namespace {
-// "2.1 GB", "512 MB", "64 kB": decimal units, one decimal.
-std::string byte_count(uint64_t bytes) {
-  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
-  double v = double(bytes);
-  int u = 0;
-  while (v >= 1000 && u < 6) {
-    v /= 1000;
-    ++u;
-  }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.1f %s", v, units[u]);
-  return buf;
-}
-}  // namespace
 
 uint64_t max_texture_side(const DecodeOptions& options) {
   // floor(sqrt(max_texels)), exact; sides are below 2^32 (squares do not wrap).
@@ -42,9 +26,9 @@ std::string texture_size_message(uint64_t width, uint64_t height, uint64_t bytes
            std::to_string(max_texture_side(options)) + " texels (the side of the limit of " +
            std::to_string(options.max_texels) + " texels; raise it with --limit texture-texels=N)";
   const uint64_t bytes = texels > UINT64_MAX / bytes_per_texel ? UINT64_MAX : texels * bytes_per_texel;
-  return "texture is " + std::to_string(width) + "x" + std::to_string(height) + " (" + byte_count(bytes) +
-         " decoded), more than the limit of " + std::to_string(options.max_texels) +
-         " texels (raise it with --limit texture-texels=N)";
+  return "texture is " + std::to_string(width) + "x" + std::to_string(height) + " (" +
+         memory_size_text(bytes, SizeDigits::one_decimal) + " decoded), more than the limit of " +
+         std::to_string(options.max_texels) + " texels (raise it with --limit texture-texels=N)";
 }
 
 void check_texture_size(const std::string& name, uint64_t width, uint64_t height, uint64_t bytes_per_texel,
