@@ -230,32 +230,31 @@ void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 TEST(HostileObj, TextWithoutLineEndsOrFacesFailsAtOnceWithoutBecomingResident) {
   const fs::path dir = test::temp_dir("hostile_obj");
-  // 200 MB of zeros without a line end (a sparse file: no disk used).
-  const fs::path zeros = dir / "zeros.obj";
-  std::ofstream(zeros, std::ios::binary).put('\0');
-  fs::resize_file(zeros, size_t(200) << 20);
+  // The error of reading `head` followed by zeros up to `bytes` (a sparse
+  // file: no disk used).
+  auto error_with_zeros = [&](const std::string& name, const std::string& head, size_t bytes) {
+    const fs::path file = dir / name;
+    std::ofstream(file, std::ios::binary) << head;
+    fs::resize_file(file, bytes);
+    const std::string error = error_of([&] { read_obj_scene(file.string()); });
+    fs::remove(file);
+    return error;
+  };
+  const std::string too_long = ": line longer than 67108864 bytes (not an OBJ text)";
+  // 200 MB of zeros without a line end.
   reset_peak_memory();
   const size_t before = peak_memory_kb();
-  EXPECT_EQ(error_of([&] { read_obj_scene(zeros.string()); }),
-            zeros.string() + ":1: line longer than 67108864 bytes (not an OBJ text)");
+  EXPECT_EQ(error_with_zeros("zeros.obj", std::string(1, '\0'), size_t(200) << 20),
+            (dir / "zeros.obj").string() + ":1" + too_long);
   if (before > 0) {
     EXPECT_LT(peak_memory_kb(), before + 100 * 1024);  // at most 64 MB read
   }
-  fs::remove(zeros);
   // The same after three lines, ended by "\r\n", a lone '\r' and '\n': line 4.
-  const fs::path late = dir / "late.obj";
-  std::ofstream(late, std::ios::binary) << "v 0 0 0\r\nv 1 0 0\rv 0 1 0\n";
-  fs::resize_file(late, size_t(100) << 20);
-  EXPECT_EQ(error_of([&] { read_obj_scene(late.string()); }),
-            late.string() + ":4: line longer than 67108864 bytes (not an OBJ text)");
-  fs::remove(late);
+  EXPECT_EQ(error_with_zeros("late.obj", "v 0 0 0\r\nv 1 0 0\rv 0 1 0\n", size_t(100) << 20),
+            (dir / "late.obj").string() + ":4" + too_long);
   // A line that only starts with 'f' after a '\n' is not a face line: the walk goes on to line 3.
-  const fs::path not_face = dir / "not_face.obj";
-  std::ofstream(not_face, std::ios::binary) << "v 0 0 0\nfoo 1 2 3\n";
-  fs::resize_file(not_face, size_t(100) << 20);
-  EXPECT_EQ(error_of([&] { read_obj_scene(not_face.string()); }),
-            not_face.string() + ":3: line longer than 67108864 bytes (not an OBJ text)");
-  fs::remove(not_face);
+  EXPECT_EQ(error_with_zeros("not_face.obj", "v 0 0 0\nfoo 1 2 3\n", size_t(100) << 20),
+            (dir / "not_face.obj").string() + ":3" + too_long);
   // 200 MB of lines without a face: read once, let go behind the walk.
   const fs::path lines = dir / "lines.obj";
   {
