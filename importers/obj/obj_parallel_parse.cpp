@@ -5,6 +5,7 @@
 #include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 #include "rayform/base/error.h"
+#include "rayform/base/populate_pages.h"
 
 #include <tbb/parallel_for.h>
 
@@ -386,10 +387,11 @@ void join_sections(const std::vector<ChunkScan>& scans, std::vector<ChunkResult>
       head.num_face_vertices.swap(to.num_face_vertices);
       head.material_ids.swap(to.material_ids);
       head.smoothing_group_ids.swap(to.smoothing_group_ids);
-      to.indices.resize(corners);
-      to.num_face_vertices.resize(faces);
-      to.material_ids.resize(faces);
-      to.smoothing_group_ids.resize(faces);
+      // resize's zero fill is serial: the fresh pages' faults are taken in parallel first.
+      resize_on_present_pages(to.indices, corners);
+      resize_on_present_pages(to.num_face_vertices, faces);
+      resize_on_present_pages(to.material_ids, faces);
+      resize_on_present_pages(to.smoothing_group_ids, faces);
       tbb::parallel_for(first, last, [&](size_t i) {
         const size_t corner = part_corner[i - first], face = part_face[i - first];
         if (const obj::ShapeBytes* b = shape_bytes(pieces[i])) {

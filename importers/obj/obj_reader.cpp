@@ -12,6 +12,7 @@
 #include "rayform/importers/obj/text_stream_buffer.h"
 
 #include "rayform/base/error.h"
+#include "rayform/base/populate_pages.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -213,8 +215,17 @@ class ObjReader {
     const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
     const size_t faces = s.mesh.num_face_vertices.size();
     // After triangulation every face is a triangle; be defensive anyway.
-    std::vector<size_t> face_start(faces);
-    {
+    // After triangulation all faces are triangles (face_start[f] = 3 f), filled in parallel.
+    const bool all_triangles = std::all_of(s.mesh.num_face_vertices.begin(), s.mesh.num_face_vertices.end(),
+                                           [](unsigned char n) { return n == 3; });
+    std::vector<size_t> face_start;
+    resize_on_present_pages(face_start, faces);
+    if (all_triangles) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, faces, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t f = r.begin(); f < r.end(); ++f) face_start[f] = 3 * f;
+      });
+      if (3 * faces != idx.size()) throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
+    } else {
       size_t o = 0;
       for (size_t f = 0; f < faces; ++f) {
         face_start[f] = o;
@@ -269,8 +280,6 @@ class ObjReader {
     mesh.source_path = path_;
     // The triangles: after tinyobjloader's triangulation every face is one
     // (faces of another size are skipped, defensively).
-    const bool all_triangles = std::all_of(s.mesh.num_face_vertices.begin(), s.mesh.num_face_vertices.end(),
-                                           [](unsigned char n) { return n == 3; });
     std::vector<uint32_t> triangle_faces;  // the face of each triangle, unless all faces are triangles
     if (!all_triangles)
       for (size_t f = 0; f < faces; ++f)
@@ -293,10 +302,10 @@ class ObjReader {
     };
     obj::WeldedVertices welded = obj::weld_vertices(position_count, 3 * triangles, key_of);
     const size_t vertices = welded.first_corner.size();
-    mesh.positions.resize(vertices);
-    if (any_uv) mesh.uvs.resize(vertices);
-    if (per_vertex_normals) mesh.normals.resize(vertices);
-    if (has_colors_) mesh.colors.resize(vertices);
+    resize_on_present_pages(mesh.positions, vertices);
+    if (any_uv) resize_on_present_pages(mesh.uvs, vertices);
+    if (per_vertex_normals) resize_on_present_pages(mesh.normals, vertices);
+    if (has_colors_) resize_on_present_pages(mesh.colors, vertices);
     auto face_normal = [&](size_t f) {
       const size_t b = face_start[f];
       vec3 p0 = pos(idx[b].vertex_index), p1 = pos(idx[b + 1].vertex_index), p2 = pos(idx[b + 2].vertex_index);
@@ -325,14 +334,31 @@ class ObjReader {
       }
     });
     mesh.indices = std::move(welded.corner_vertex);
-    std::vector<int> face_mats(triangles);
-    for (size_t t = 0; t < triangles; ++t) {
-      const size_t f = face_of(t);
-      int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
-      face_mats[t] =
-          mid >= 0 && size_t(mid) < materials_.library().materials.size() ? mid : materials_.default_material();
-    }
     if (mesh.indices.empty()) return invalid;
+    // The material of each triangle (the default one past the library); one
+    // default material is made before the parallel loop reads it.
+    const size_t library_materials = materials_.library().materials.size();
+    const bool any_default = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, triangles, 1 << 16), false,
+        [&](const tbb::blocked_range<size_t>& r, bool acc) {
+          for (size_t t = r.begin(); t < r.end() && !acc; ++t) {
+            const size_t f = face_of(t);
+            const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+            acc = !(mid >= 0 && size_t(mid) < library_materials);
+          }
+          return acc;
+        },
+        std::logical_or<bool>());
+    const int default_material = any_default ? materials_.default_material() : invalid;
+    std::vector<int> face_mats;
+    resize_on_present_pages(face_mats, triangles);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t t = r.begin(); t < r.end(); ++t) {
+        const size_t f = face_of(t);
+        const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+        face_mats[t] = mid >= 0 && size_t(mid) < library_materials ? mid : default_material;
+      }
+    });
     bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
     mesh_node_material_ = face_mats[0];
     if (!uniform) mesh.face_materials = std::move(face_mats);

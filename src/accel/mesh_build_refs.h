@@ -5,6 +5,7 @@
 
 #include "rayform/accel/mesh_accel.h"
 #include "rayform/accel/simd4.h"
+#include "rayform/base/populate_pages.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -96,7 +97,7 @@ inline Range triangle_refs(std::span<const vec3> positions, std::span<const uint
     size_t valid = 0;  // triangles with a box
     Range root;        // over those, in index order
   };
-  refs.resize(n);
+  resize_on_present_pages(refs, n);
   Boxes boxes = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, 1u << 14), Boxes{},
       [&](const tbb::blocked_range<size_t>& r, Boxes acc) {
