@@ -2,7 +2,9 @@
 // by parallel tasks give exactly what one task gives: the same PrimRef array
 // after each partition and the same boxes of both sides, bit for bit (+0 and
 // -0 included), down several levels, for primitives on a coarse grid (many
-// ties, signed zeros) and for a random soup.
+// ties, signed zeros) and for a random soup. And the split find_split picks
+// is the binned SAH's best, recomputed from the primitives themselves (large
+// ranges bin into two sets of bins, merged; small ones into one).
 #include "rayform/accel/mesh_build_split.h"
 
 #include <gtest/gtest.h>
@@ -113,6 +115,44 @@ TEST(MeshBuildPartition, ParallelPartitionEqualsOneTaskOnAGridWithSignedZeros) {
 TEST(MeshBuildPartition, ParallelPartitionEqualsOneTaskOnARandomSoup) {
   expect_same_partitions(150000, Layout::soup, 32);
   expect_same_partitions(1000, Layout::soup, 8);
+}
+
+// find_split(r) against the SAH of every candidate plane recomputed from the
+// primitives and the bins find_split recorded in them: the same first best
+// (axis, then plane, in order), the same count on the left, the same cost.
+void expect_best_binned_split(uint32_t n, Layout layout, int bins) {
+  std::vector<PrimRef> refs = make_refs(n, layout, n + 7);
+  RangeSplitter splitter(refs, bins, 1.f, /*parallel_threshold*/ 1u << 30);
+  const Range r = root_of(refs);
+  const Split s = splitter.find_split(r, 0);
+  ASSERT_GE(s.axis, 0);
+  float best = infinity;
+  int best_axis = -1, best_pos = -1;
+  uint32_t best_left = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int pos = 0; pos + 1 < s.nb; ++pos) {
+      Box left, right;
+      uint32_t nl = 0, nr = 0;
+      for (const PrimRef& p : refs) {
+        const f4 lo = simd::load(p.lo), hi = simd::load(p.hi);
+        if (int(p.bin(a)) <= pos) left.expand(lo, hi), ++nl;
+        else right.expand(lo, hi), ++nr;
+      }
+      if (nl == 0 || nr == 0) continue;
+      const float cost = left.half_area() * float(blocks(nl)) + right.half_area() * float(blocks(nr));
+      if (cost < best) best = cost, best_axis = a, best_pos = pos, best_left = nl;
+    }
+  EXPECT_EQ(s.axis, best_axis);
+  EXPECT_EQ(s.pos, best_pos);
+  EXPECT_EQ(s.left, best_left);
+  EXPECT_EQ(s.cost, 1.f + best / r.geom.half_area());
+}
+
+TEST(MeshBuildSplit, FindSplitIsTheBestBinnedSahSplitOfItsPrimitives) {
+  expect_best_binned_split(100, Layout::soup, 16);  // one set of bins
+  expect_best_binned_split(5001, Layout::soup, 16);  // two sets, an odd count
+  expect_best_binned_split(4096, Layout::grid_positive, 16);
+  expect_best_binned_split(3001, Layout::grid_negative, 64);
 }
 
 }  // namespace
