@@ -11,6 +11,8 @@
 //      (a prefix sum), number the vertices.
 #pragma once
 
+#include "rayform/base/populate_pages.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -67,12 +69,13 @@ WeldedVertices weld_vertices(size_t positions, size_t corners, const KeyOf& key_
   // 2. Each corner's representative: the first corner with its key (itself
   // when it is that corner). Corners whose key is not their position's first
   // key are left for the map, in corner order.
-  std::vector<uint32_t> representative(corners, none);
+  std::vector<uint32_t> representative;
+  resize_on_present_pages(representative, corners);
   each_block(corners, [&](size_t b, size_t e) {
     for (size_t c = b; c < e; ++c) {
       const CornerKey k = key_of(c);
       const uint32_t f = first_at[size_t(k.position)];
-      if (f == c || key_of(f) == k) representative[c] = f;
+      representative[c] = f == c || key_of(f) == k ? f : none;
     }
   });
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> other_keys;
@@ -89,8 +92,8 @@ WeldedVertices weld_vertices(size_t positions, size_t corners, const KeyOf& key_
   });
   for (size_t k = 0; k < blocks; ++k) block_first[k + 1] += block_first[k];
   WeldedVertices w;
-  w.first_corner.resize(block_first[blocks]);
-  w.corner_vertex.resize(corners);
+  resize_on_present_pages(w.first_corner, block_first[blocks]);
+  resize_on_present_pages(w.corner_vertex, corners);
   tbb::parallel_for(size_t(0), blocks, [&](size_t k) {
     uint32_t v = block_first[k];
     for (size_t c = k * grain, e = std::min(corners, c + grain); c < e; ++c)

@@ -53,6 +53,34 @@ TEST(DuplicateTriangles, ManyCopiesOfTwoKindsKeepOneOfEach) {
   EXPECT_EQ(distinct_triangles(m), (std::vector<uint32_t>{0, 1}));
 }
 
+TEST(DuplicateTriangles, CopiesFarApartInALargeMeshAreFoundInIndexOrder) {
+  // 300000 distinct triangles of a grid (the candidates are collected in
+  // blocks of 65536), then every 9973rd one made a copy of the triangle
+  // 70001 before it, so most pairs lie in different blocks.
+  Mesh m;
+  constexpr uint32_t side = 400;
+  for (uint32_t j = 0; j < side; ++j)
+    for (uint32_t i = 0; i < side; ++i) m.positions.push_back(vec3(float(i), float(j), 0.f));
+  for (uint32_t j = 0; j + 1 < side && m.triangle_count() < 300000; ++j)
+    for (uint32_t i = 0; i + 1 < side; ++i) {
+      const uint32_t v = j * side + i;
+      m.indices.insert(m.indices.end(), {v, v + 1, v + side});
+      m.indices.insert(m.indices.end(), {v + 1, v + side + 1, v + side});
+    }
+  const size_t n = m.triangle_count();
+  ASSERT_GT(n, size_t(300000));
+  std::vector<uint32_t> expected;
+  for (size_t t = 0; t < n; ++t) {
+    if (t >= 70001 && t % 9973 == 0) {
+      for (size_t k = 0; k < 3; ++k) m.indices[3 * t + k] = m.indices[3 * (t - 70001) + k];
+      continue;
+    }
+    expected.push_back(uint32_t(t));
+  }
+  ASSERT_LT(expected.size(), n - 20);
+  EXPECT_EQ(distinct_triangles(m), expected);
+}
+
 TEST(DuplicateTriangles, HitsReportTheLowestIndexWithTheSameTAndBarycentrics) {
   Mesh one = corners_mesh(), copies = corners_mesh();
   one.indices = {0, 1, 2};
