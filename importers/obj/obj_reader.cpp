@@ -214,8 +214,8 @@ class ObjReader {
   int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
     const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
     const size_t faces = s.mesh.num_face_vertices.size();
-    // After triangulation every face is a triangle; be defensive anyway.
-    // After triangulation all faces are triangles (face_start[f] = 3 f), filled in parallel.
+    // After triangulation every face is a triangle (face_start[f] = 3 f, filled
+    // in parallel); other faces are handled defensively.
     const bool all_triangles = std::all_of(s.mesh.num_face_vertices.begin(), s.mesh.num_face_vertices.end(),
                                            [](unsigned char n) { return n == 3; });
     std::vector<size_t> face_start;
@@ -338,14 +338,15 @@ class ObjReader {
     // The material of each triangle (the default one past the library); one
     // default material is made before the parallel loop reads it.
     const size_t library_materials = materials_.library().materials.size();
+    auto library_material = [&](size_t t) {  // the triangle's material in the library, or -1
+      const size_t f = face_of(t);
+      const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+      return mid >= 0 && size_t(mid) < library_materials ? mid : -1;
+    };
     const bool any_default = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, triangles, 1 << 16), false,
         [&](const tbb::blocked_range<size_t>& r, bool acc) {
-          for (size_t t = r.begin(); t < r.end() && !acc; ++t) {
-            const size_t f = face_of(t);
-            const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
-            acc = !(mid >= 0 && size_t(mid) < library_materials);
-          }
+          for (size_t t = r.begin(); t < r.end() && !acc; ++t) acc = library_material(t) < 0;
           return acc;
         },
         std::logical_or<bool>());
@@ -354,9 +355,8 @@ class ObjReader {
     resize_on_present_pages(face_mats, triangles);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t t = r.begin(); t < r.end(); ++t) {
-        const size_t f = face_of(t);
-        const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
-        face_mats[t] = mid >= 0 && size_t(mid) < library_materials ? mid : default_material;
+        const int m = library_material(t);
+        face_mats[t] = m >= 0 ? m : default_material;
       }
     });
     bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
