@@ -224,7 +224,8 @@ class ObjReader {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, faces, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t f = r.begin(); f < r.end(); ++f) face_start[f] = 3 * f;
       });
-      if (3 * faces != idx.size()) throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
+      if (3 * faces != idx.size())
+        throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
     } else {
       size_t o = 0;
       for (size_t f = 0; f < faces; ++f) {

@@ -149,7 +149,7 @@ void expect_best_binned_split(uint32_t n, Layout layout, int bins) {
 }
 
 TEST(MeshBuildSplit, FindSplitIsTheBestBinnedSahSplitOfItsPrimitives) {
-  expect_best_binned_split(100, Layout::soup, 16);  // one set of bins
+  expect_best_binned_split(100, Layout::soup, 16);   // one set of bins
   expect_best_binned_split(5001, Layout::soup, 16);  // two sets, an odd count
   expect_best_binned_split(4096, Layout::grid_positive, 16);
   expect_best_binned_split(3001, Layout::grid_negative, 64);
