@@ -7,11 +7,12 @@
 //      corner's vertex (most do: a position has one key but at uv seams and
 //      creases); the others look their key up in a map, one after another in
 //      corner order (so the first corner with each key still comes first);
-//   3. the corners that come first with their key, counted in corner order
-//      (a prefix sum), number the vertices.
+//   3. the corners that come first with their key, numbered in corner order
+//      (base/select_in_order.h), number the vertices.
 #pragma once
 
 #include "rayform/base/populate_pages.h"
+#include "rayform/base/select_in_order.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -81,27 +82,17 @@ WeldedVertices weld_vertices(size_t positions, size_t corners, const KeyOf& key_
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> other_keys;
   for (size_t c = 0; c < corners; ++c)
     if (representative[c] == none) representative[c] = other_keys.try_emplace(key_of(c), uint32_t(c)).first->second;
-  // 3. Vertex numbers: corners that are their own representative, counted
-  // in order (block counts, their prefix sum, then each block).
-  const size_t blocks = (corners + grain - 1) / grain;
-  std::vector<uint32_t> block_first(blocks + 1, 0);
-  tbb::parallel_for(size_t(0), blocks, [&](size_t k) {
-    uint32_t n = 0;
-    for (size_t c = k * grain, e = std::min(corners, c + grain); c < e; ++c) n += representative[c] == c;
-    block_first[k + 1] = n;
-  });
-  for (size_t k = 0; k < blocks; ++k) block_first[k + 1] += block_first[k];
+  // 3. Vertex numbers: corners that are their own representative, numbered
+  // in corner order.
   WeldedVertices w;
-  resize_on_present_pages(w.first_corner, block_first[blocks]);
   resize_on_present_pages(w.corner_vertex, corners);
-  tbb::parallel_for(size_t(0), blocks, [&](size_t k) {
-    uint32_t v = block_first[k];
-    for (size_t c = k * grain, e = std::min(corners, c + grain); c < e; ++c)
-      if (representative[c] == c) {
+  select_in_order(
+      corners, grain, [&](size_t c) { return representative[c] == c; },
+      [&](size_t total) { resize_on_present_pages(w.first_corner, total); },
+      [&](size_t c, size_t v) {
         w.first_corner[v] = uint32_t(c);
-        w.corner_vertex[c] = v++;
-      }
-  });
+        w.corner_vertex[c] = uint32_t(v);
+      });
   each_block(corners, [&](size_t b, size_t e) {
     for (size_t c = b; c < e; ++c)
       if (representative[c] != c) w.corner_vertex[c] = w.corner_vertex[representative[c]];

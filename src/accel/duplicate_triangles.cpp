@@ -1,5 +1,7 @@
 #include "rayform/accel/duplicate_triangles.h"
 
+#include "rayform/base/select_in_order.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -89,26 +91,14 @@ std::vector<uint32_t> distinct_triangles(const Mesh& m) {
   std::vector<std::atomic<uint64_t>>().swap(seen);
   // (position hash, index) in one word, sorted: the candidates of equal
   // corner positions (and a few others) in runs, lowest index first.
-  // Collected by blocks (counted, then written at their offsets), in index order.
-  auto candidate = [&](size_t t) {
-    const uint64_t s = slot(t);
-    return (twice[s >> 6].load(std::memory_order_relaxed) >> (s & 63) & 1) != 0;
-  };
-  constexpr size_t key_block = size_t(1) << 16;
-  const size_t key_blocks = (n + key_block - 1) / key_block;
-  std::vector<size_t> block_first(key_blocks + 1, 0);
-  tbb::parallel_for(size_t(0), key_blocks, [&](size_t b) {
-    size_t count = 0;
-    for (size_t t = b * key_block, e = std::min(n, t + key_block); t < e; ++t) count += candidate(t);
-    block_first[b + 1] = count;
-  });
-  for (size_t b = 0; b < key_blocks; ++b) block_first[b + 1] += block_first[b];
-  std::vector<uint64_t> keys(block_first[key_blocks]);
-  tbb::parallel_for(size_t(0), key_blocks, [&](size_t b) {
-    size_t k = block_first[b];
-    for (size_t t = b * key_block, e = std::min(n, t + key_block); t < e; ++t)
-      if (candidate(t)) keys[k++] = (hashes[t] << index_bits) | t;
-  });
+  std::vector<uint64_t> keys;
+  select_in_order(
+      n, size_t(1) << 16,
+      [&](size_t t) {
+        const uint64_t s = slot(t);
+        return (twice[s >> 6].load(std::memory_order_relaxed) >> (s & 63) & 1) != 0;
+      },
+      [&](size_t total) { keys.resize(total); }, [&](size_t t, size_t k) { keys[k] = (hashes[t] << index_bits) | t; });
   std::vector<std::atomic<uint64_t>>().swap(twice);
   std::vector<uint64_t>().swap(hashes);
   tbb::parallel_sort(keys.begin(), keys.end());
