@@ -211,136 +211,80 @@ class ObjReader {
 
   // ---- geometry ----------------------------------------------------------
 
-  int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
-    const std::vector<tinyobj::index_t>& idx = s.mesh.indices;
-    const size_t faces = s.mesh.num_face_vertices.size();
-    // After triangulation every face is a triangle (face_start[f] = 3 f, filled
-    // in parallel); other faces are handled defensively.
-    const bool all_triangles = std::all_of(s.mesh.num_face_vertices.begin(), s.mesh.num_face_vertices.end(),
-                                           [](unsigned char n) { return n == 3; });
-    std::vector<size_t> face_start;
-    resize_on_present_pages(face_start, faces);
-    if (all_triangles) {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, faces, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t f = r.begin(); f < r.end(); ++f) face_start[f] = 3 * f;
-      });
-      if (3 * faces != idx.size())
-        throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
-    } else {
-      size_t o = 0;
-      for (size_t f = 0; f < faces; ++f) {
-        face_start[f] = o;
-        o += s.mesh.num_face_vertices[f];
-      }
-      if (o != idx.size()) throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
+  // A shape's triangles as tinyobjloader gives them: after its triangulation
+  // every face is one (faces of another size are skipped, defensively).
+  struct ShapeTriangles {
+    const std::vector<tinyobj::index_t>& idx;
+    std::vector<size_t> face_start;        // per face: its first corner in idx
+    bool all_triangles = true;             // then face_start[f] = 3 f
+    std::vector<uint32_t> triangle_faces;  // the face of each triangle, unless all faces are triangles
+    size_t count() const { return all_triangles ? face_start.size() : triangle_faces.size(); }
+    size_t face_of(size_t t) const { return all_triangles ? t : size_t(triangle_faces[t]); }
+    // Corner c % 3 of triangle c / 3.
+    const tinyobj::index_t& corner(size_t c) const {
+      return all_triangles ? idx[c] : idx[face_start[triangle_faces[c / 3]] + c % 3];
     }
-    auto pos = [&](int v) { return vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]); };
-    auto corner_normal = [&](const tinyobj::index_t& ix) {
-      return normals_ok && ix.normal_index >= 0 && normal_usable_[size_t(ix.normal_index)] ? ix.normal_index : -1;
-    };
-    auto corner_uv = [&](const tinyobj::index_t& ix) { return uvs_ok ? ix.texcoord_index : -1; };
+  };
 
-    struct CornerKinds {
-      bool any_uv = false, any_normal = false, all_normals = true;
-    };
-    const CornerKinds kinds = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, faces, 1 << 14), CornerKinds{},
+  // What a shape's corners hold, and so which vertex attributes its mesh gets.
+  struct CornerKinds {
+    bool any_uv = false, any_normal = false, all_normals = true;
+  };
+
+  ShapeTriangles shape_triangles(const tinyobj::shape_t& s) const {
+    const std::vector<unsigned char>& sizes = s.mesh.num_face_vertices;
+    const size_t faces = sizes.size();
+    ShapeTriangles tri{
+        s.mesh.indices, {}, std::all_of(sizes.begin(), sizes.end(), [](unsigned char n) { return n == 3; }), {}};
+    resize_on_present_pages(tri.face_start, faces);
+    size_t corners = 3 * faces;
+    if (tri.all_triangles) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, faces, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t f = r.begin(); f < r.end(); ++f) tri.face_start[f] = 3 * f;
+      });
+    } else {
+      corners = 0;
+      for (size_t f = 0; f < faces; ++f) {
+        tri.face_start[f] = corners;
+        corners += sizes[f];
+        if (sizes[f] == 3) tri.triangle_faces.push_back(uint32_t(f));
+      }
+    }
+    if (corners != tri.idx.size())
+      throw Error(path_ + ": '" + s.name + "': inconsistent face data from the OBJ parser");
+    return tri;
+  }
+
+  // A corner's normal index, or -1 (none, or one the file's normals cannot give).
+  int corner_normal(const tinyobj::index_t& ix, bool normals_ok) const {
+    return normals_ok && ix.normal_index >= 0 && normal_usable_[size_t(ix.normal_index)] ? ix.normal_index : -1;
+  }
+  static int corner_uv(const tinyobj::index_t& ix, bool uvs_ok) { return uvs_ok ? ix.texcoord_index : -1; }
+
+  CornerKinds corner_kinds(const ShapeTriangles& tri, bool uvs_ok, bool normals_ok) const {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, 3 * tri.count(), 1 << 14), CornerKinds{},
         [&](const tbb::blocked_range<size_t>& r, CornerKinds acc) {
-          for (size_t f = r.begin(); f < r.end(); ++f) {
-            if (s.mesh.num_face_vertices[f] != 3) continue;
-            for (int k = 0; k < 3; ++k) {
-              const tinyobj::index_t& ix = idx[face_start[f] + k];
-              acc.any_uv |= corner_uv(ix) >= 0;
-              bool hn = corner_normal(ix) >= 0;
-              acc.any_normal |= hn;
-              acc.all_normals &= hn;
-            }
+          for (size_t c = r.begin(); c < r.end(); ++c) {
+            const tinyobj::index_t& ix = tri.corner(c);
+            acc.any_uv |= corner_uv(ix, uvs_ok) >= 0;
+            const bool has_normal = corner_normal(ix, normals_ok) >= 0;
+            acc.any_normal |= has_normal;
+            acc.all_normals &= has_normal;
           }
           return acc;
         },
         [](CornerKinds a, const CornerKinds& b) {
           return CornerKinds{a.any_uv || b.any_uv, a.any_normal || b.any_normal, a.all_normals && b.all_normals};
         });
-    const bool any_uv = kinds.any_uv, any_normal = kinds.any_normal, all_normals = kinds.all_normals;
-    // Normals wanted per vertex unless the file gives none and the caller
-    // asked for facets: then the mesh has none and the renderer uses face normals.
-    const bool generate = !all_normals;
-    const bool per_vertex_normals = !(options_.flat && !any_normal);
+  }
 
-    // Smooth generated normals (obj_smooth_normals.h): per position, shared
-    // among the parts of a large mesh's read.
-    const size_t position_count = a.vertices.size() / 3;
-    std::vector<vec3> smooth;  // per position; zero where no face contributes
-    if (generate && !options_.flat) {
-      const WorkShare* share = options_.share && faces >= options_.share_min_faces ? options_.share : nullptr;
-      smooth = obj::smooth_normal_sums(a.vertices, {idx, face_start, s.mesh.num_face_vertices}, share);
-    }
-
-    Mesh mesh;
-    mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
-    mesh.source_path = path_;
-    // The triangles: after tinyobjloader's triangulation every face is one
-    // (faces of another size are skipped, defensively).
-    std::vector<uint32_t> triangle_faces;  // the face of each triangle, unless all faces are triangles
-    if (!all_triangles)
-      for (size_t f = 0; f < faces; ++f)
-        if (s.mesh.num_face_vertices[f] == 3) triangle_faces.push_back(uint32_t(f));
-    const size_t triangles = all_triangles ? faces : triangle_faces.size();
-    if (triangles == 0) return invalid;
-    auto face_of = [&](size_t t) { return all_triangles ? t : size_t(triangle_faces[t]); };
-    // Corner c is idx[c] when all faces are triangles (face_start[f] = 3 f).
-    auto corner = [&](size_t c) -> const tinyobj::index_t& {
-      return all_triangles ? idx[c] : idx[face_start[triangle_faces[c / 3]] + c % 3];
-    };
-    // A corner's vertex is found by its key (position, uv, normal); a corner
-    // without a normal: smooth ones are shared per position (key -1),
-    // faceted ones belong to their face alone (key -2 - face).
-    auto key_of = [&](size_t c) {
-      const tinyobj::index_t& ix = corner(c);
-      const int n = corner_normal(ix);
-      const int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(face_of(c / 3)) : -1));
-      return obj::CornerKey{ix.vertex_index, corner_uv(ix), nkey};
-    };
-    obj::WeldedVertices welded = obj::weld_vertices(position_count, 3 * triangles, key_of);
-    const size_t vertices = welded.first_corner.size();
-    resize_on_present_pages(mesh.positions, vertices);
-    if (any_uv) resize_on_present_pages(mesh.uvs, vertices);
-    if (per_vertex_normals) resize_on_present_pages(mesh.normals, vertices);
-    if (has_colors_) resize_on_present_pages(mesh.colors, vertices);
-    auto face_normal = [&](size_t f) {
-      const size_t b = face_start[f];
-      vec3 p0 = pos(idx[b].vertex_index), p1 = pos(idx[b + 1].vertex_index), p2 = pos(idx[b + 2].vertex_index);
-      vec3 n = glm::cross(p1 - p0, p2 - p0);
-      float len = glm::length(n);
-      return len > 0.f && std::isfinite(len) ? n / len : vec3(0.f);
-    };
-    // Each vertex from the first corner with its key.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t v = r.begin(); v < r.end(); ++v) {
-        const size_t c = welded.first_corner[v];
-        const tinyobj::index_t& ix = corner(c);
-        const int t = corner_uv(ix), n = corner_normal(ix);
-        const size_t p = size_t(ix.vertex_index);
-        mesh.positions[v] = pos(ix.vertex_index);
-        if (any_uv) mesh.uvs[v] = t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f);
-        if (per_vertex_normals) {
-          vec3 nv(0.f);
-          if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
-          else if (options_.flat) nv = generate ? face_normal(face_of(c / 3)) : vec3(0.f);
-          else if (!smooth.empty()) nv = smooth[p];
-          float len = glm::length(nv);
-          mesh.normals[v] = len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f);
-        }
-        if (has_colors_) mesh.colors[v] = vec3(a.colors[3 * p], a.colors[3 * p + 1], a.colors[3 * p + 2]);
-      }
-    });
-    mesh.indices = std::move(welded.corner_vertex);
-    if (mesh.indices.empty()) return invalid;
-    // The material of each triangle (the default one past the library); one
-    // default material is made before the parallel loop reads it.
-    const size_t library_materials = materials_.library().materials.size();
+  // The material of each triangle: its library material, or the default one
+  // (made, once, before the parallel loop reads it).
+  std::vector<int> triangle_materials(const tinyobj::shape_t& s, const ShapeTriangles& tri) {
+    const size_t triangles = tri.count(), library_materials = materials_.library().materials.size();
     auto library_material = [&](size_t t) {  // the triangle's material in the library, or -1
-      const size_t f = face_of(t);
+      const size_t f = tri.face_of(t);
       const int mid = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
       return mid >= 0 && size_t(mid) < library_materials ? mid : -1;
     };
@@ -360,6 +304,79 @@ class ObjReader {
         face_mats[t] = m >= 0 ? m : default_material;
       }
     });
+    return face_mats;
+  }
+
+  int build_mesh(const tinyobj::shape_t& s, const tinyobj::attrib_t& a, bool uvs_ok, bool normals_ok) {
+    const ShapeTriangles tri = shape_triangles(s);
+    const std::vector<tinyobj::index_t>& idx = tri.idx;
+    auto pos = [&](int v) { return vec3(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]); };
+    const CornerKinds kinds = corner_kinds(tri, uvs_ok, normals_ok);
+    const bool any_uv = kinds.any_uv;
+    // Normals wanted per vertex unless the file gives none and the caller
+    // asked for facets: then the mesh has none and the renderer uses face normals.
+    const bool generate = !kinds.all_normals;
+    const bool per_vertex_normals = !(options_.flat && !kinds.any_normal);
+
+    // Smooth generated normals (obj_smooth_normals.h): per position, shared
+    // among the parts of a large mesh's read.
+    const size_t position_count = a.vertices.size() / 3;
+    std::vector<vec3> smooth;  // per position; zero where no face contributes
+    if (generate && !options_.flat) {
+      const size_t faces = s.mesh.num_face_vertices.size();
+      const WorkShare* share = options_.share && faces >= options_.share_min_faces ? options_.share : nullptr;
+      smooth = obj::smooth_normal_sums(a.vertices, {idx, tri.face_start, s.mesh.num_face_vertices}, share);
+    }
+
+    const size_t triangles = tri.count();
+    if (triangles == 0) return invalid;
+    Mesh mesh;
+    mesh.name = s.name.empty() ? fs::path(path_).stem().string() : s.name;
+    mesh.source_path = path_;
+    // A corner's vertex is found by its key (position, uv, normal); a corner
+    // without a normal: smooth ones are shared per position (key -1),
+    // faceted ones belong to their face alone (key -2 - face).
+    auto key_of = [&](size_t c) {
+      const tinyobj::index_t& ix = tri.corner(c);
+      const int n = corner_normal(ix, normals_ok);
+      const int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(tri.face_of(c / 3)) : -1));
+      return obj::CornerKey{ix.vertex_index, corner_uv(ix, uvs_ok), nkey};
+    };
+    obj::WeldedVertices welded = obj::weld_vertices(position_count, 3 * triangles, key_of);
+    const size_t vertices = welded.first_corner.size();
+    resize_on_present_pages(mesh.positions, vertices);
+    if (any_uv) resize_on_present_pages(mesh.uvs, vertices);
+    if (per_vertex_normals) resize_on_present_pages(mesh.normals, vertices);
+    if (has_colors_) resize_on_present_pages(mesh.colors, vertices);
+    auto face_normal = [&](size_t f) {
+      const size_t b = tri.face_start[f];
+      vec3 p0 = pos(idx[b].vertex_index), p1 = pos(idx[b + 1].vertex_index), p2 = pos(idx[b + 2].vertex_index);
+      vec3 n = glm::cross(p1 - p0, p2 - p0);
+      float len = glm::length(n);
+      return len > 0.f && std::isfinite(len) ? n / len : vec3(0.f);
+    };
+    // Each vertex from the first corner with its key.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t v = r.begin(); v < r.end(); ++v) {
+        const size_t c = welded.first_corner[v];
+        const tinyobj::index_t& ix = tri.corner(c);
+        const int t = corner_uv(ix, uvs_ok), n = corner_normal(ix, normals_ok);
+        const size_t p = size_t(ix.vertex_index);
+        mesh.positions[v] = pos(ix.vertex_index);
+        if (any_uv) mesh.uvs[v] = t >= 0 ? vec2(a.texcoords[2 * t], a.texcoords[2 * t + 1]) : vec2(0.f);
+        if (per_vertex_normals) {
+          vec3 nv(0.f);
+          if (n >= 0) nv = vec3(a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]);
+          else if (options_.flat) nv = generate ? face_normal(tri.face_of(c / 3)) : vec3(0.f);
+          else if (!smooth.empty()) nv = smooth[p];
+          float len = glm::length(nv);
+          mesh.normals[v] = len > 0.f && std::isfinite(len) ? nv / len : vec3(0.f);
+        }
+        if (has_colors_) mesh.colors[v] = vec3(a.colors[3 * p], a.colors[3 * p + 1], a.colors[3 * p + 2]);
+      }
+    });
+    mesh.indices = std::move(welded.corner_vertex);
+    std::vector<int> face_mats = triangle_materials(s, tri);
     bool uniform = std::all_of(face_mats.begin(), face_mats.end(), [&](int m) { return m == face_mats[0]; });
     mesh_node_material_ = face_mats[0];
     if (!uniform) mesh.face_materials = std::move(face_mats);
