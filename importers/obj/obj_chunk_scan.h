@@ -28,6 +28,14 @@ struct ChunkScan {
   size_t vertex_lines = 0;               // `v` lines
   // Per face of more than three corners, in order: the chunk's `v` lines before it.
   std::vector<size_t> polygon_vertices_before;
+  // Whether tinyobjloader's callback parse gives exactly what LoadObj gives
+  // for the chunk (obj_plain_chunk.h), where every corner names a position
+  // from 1: no state line (mtllib, usemtl, g, o, s), every corner that names
+  // a uv or normal of the form i, i/j, i//k or i/j/k (each index a decimal
+  // from 1 of at most 9 digits, without sign or leading zero), and no colour
+  // on its first `v` line (fewer than six numbers: then LoadObj keeps no
+  // colour of the chunk).
+  bool plain = true;
 };
 
 inline bool is_space(char c) { return c == ' ' || c == '\t'; }

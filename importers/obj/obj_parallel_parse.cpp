@@ -2,6 +2,7 @@
 
 #include "rayform/importers/obj/obj_chunk_scan.h"
 #include "rayform/importers/obj/obj_parse_bytes.h"
+#include "rayform/importers/obj/obj_plain_chunk.h"
 #include "rayform/importers/obj/obj_polygon_split.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
 #include "rayform/base/error.h"
@@ -75,6 +76,29 @@ bool keep_warnings(const std::string& warn, std::string* kept) {
 
 using ChunkResult = obj::ChunkParse;
 
+// What LoadObj gives the faces behind a chunk's state lines (`prefix`): a
+// face put behind them, parsed so, tells. False where that parse fails or
+// warns of more than keep_warnings keeps (`warn` gets what it keeps).
+bool face_state(const std::string& prefix, const MaterialReaderFactory& readers, obj::FaceState* state,
+                std::string* warn) {
+  TextStreamBuffer buffer(prefix, "f 1 2 3\n");
+  std::istream in(&buffer);
+  std::unique_ptr<tinyobj::MaterialReader> reader = readers();
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string w, err;
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &w, &err, &in, reader.get(), /*triangulate*/ false,
+                        /*default_vcols_fallback*/ false) ||
+      !keep_warnings(w, warn) || shapes.size() != 1 || shapes[0].mesh.material_ids.size() != 1 ||
+      shapes[0].mesh.smoothing_group_ids.size() != 1)
+    return false;
+  state->shape_name = shapes[0].name;
+  state->material = shapes[0].mesh.material_ids[0];
+  state->smoothing_group = shapes[0].mesh.smoothing_group_ids[0];
+  return true;
+}
+
 // The chunk's shapes are those of its sections with faces, each face of
 // three corners or more, and its vertices those of its `v` lines.
 bool shapes_match_scan(const ChunkResult& r, const ChunkScan& s) {
@@ -136,11 +160,6 @@ std::vector<std::string_view> vertex_line_texts(std::string_view text, const std
     });
   }
   return lines;
-}
-
-template <class T>
-void append(std::vector<T>& to, const std::vector<T>& from) {
-  to.insert(to.end(), from.begin(), from.end());
 }
 
 // The part of a shared parse that chunk k falls to: the chunks are dealt
@@ -258,34 +277,33 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
 
 // The chunks' vertex arrays (and their warnings) concatenated into `o`, the
 // colours kept only when every chunk has them; returns the first vertex of
-// each chunk (0-based), then the count.
+// each chunk (0-based), then the count. Each array is sized once and the
+// chunks' pieces copied in by parallel tasks.
 std::vector<size_t> join_vertex_arrays(const std::vector<ChunkResult>& results, const std::vector<ChunkScan>& scans,
                                        ObjParse& o) {
-  bool all_colors = true;
   const size_t n = results.size();
   std::vector<size_t> first_vertex(n + 1, 0);  // the first vertex of each chunk (0-based), then the count
-  {
-    size_t vertices = 0, normals = 0, texcoords = 0;
-    for (const ChunkResult& r : results) {
-      vertices += r.attrib.vertices.size();
-      normals += r.attrib.normals.size();
-      texcoords += r.attrib.texcoords.size();
-    }
-    o.attrib.vertices.reserve(vertices);
-    o.attrib.normals.reserve(normals);
-    o.attrib.texcoords.reserve(texcoords);
-  }
+  bool all_colors = true;
   for (size_t k = 0; k < n; ++k) {
-    const ChunkResult& r = results[k];
-    append(o.attrib.vertices, r.attrib.vertices);
-    append(o.attrib.normals, r.attrib.normals);
-    append(o.attrib.texcoords, r.attrib.texcoords);
-    all_colors &= r.attrib.colors.size() == r.attrib.vertices.size();
-    if (all_colors) append(o.attrib.colors, r.attrib.colors);
-    o.warn += r.warn;
+    all_colors &= results[k].attrib.colors.size() == results[k].attrib.vertices.size();
+    o.warn += results[k].warn;
     first_vertex[k + 1] = first_vertex[k] + scans[k].vertex_lines;
   }
-  if (!all_colors) o.attrib.colors.clear();
+  using Array = std::vector<tinyobj::real_t>;
+  std::vector<std::pair<Array tinyobj::attrib_t::*, Array*>> arrays = {
+      {&tinyobj::attrib_t::vertices, &o.attrib.vertices},
+      {&tinyobj::attrib_t::normals, &o.attrib.normals},
+      {&tinyobj::attrib_t::texcoords, &o.attrib.texcoords}};
+  if (all_colors) arrays.push_back({&tinyobj::attrib_t::colors, &o.attrib.colors});
+  std::vector<size_t> at(n + 1);  // where each chunk's piece of one array goes
+  for (const auto& [member, to] : arrays) {
+    for (size_t k = 0; k < n; ++k) at[k + 1] = at[k] + (results[k].attrib.*member).size();
+    resize_on_present_pages(*to, at[n]);
+    tbb::parallel_for(size_t(0), n, [&](size_t k) {
+      const Array& from = results[k].attrib.*member;
+      std::copy(from.begin(), from.end(), to->begin() + ptrdiff_t(at[k]));
+    });
+  }
   return first_vertex;
 }
 
@@ -431,7 +449,17 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   std::vector<ChunkResult> results(n);
   const std::function<void(size_t)> parse_chunk = [&](size_t k) {
     ChunkResult& r = results[k];
-    TextStreamBuffer buffer(prefixes[k], text.substr(starts[k], starts[k + 1] - starts[k]));
+    const std::string_view body = text.substr(starts[k], starts[k + 1] - starts[k]);
+    if (scans[k].plain) {
+      obj::FaceState state;
+      std::string warn;
+      if (!face_state(prefixes[k], readers, &state, &warn)) return;  // r.ok stays false: the whole text falls back
+      obj::parse_plain_chunk(body, scans[k], state, &r);
+      r.warn = std::move(warn);
+      r.ok = r.ok && shapes_match_scan(r, scans[k]);
+      return;
+    }
+    TextStreamBuffer buffer(prefixes[k], body);
     std::istream in(&buffer);
     std::unique_ptr<tinyobj::MaterialReader> reader = readers();
     std::vector<tinyobj::material_t> materials;

@@ -5,12 +5,14 @@
 // The text is cut at line ends into chunks; a quick scan of each chunk
 // (obj_chunk_scan.h: line kinds only, no numbers) finds the state lines
 // (mtllib, usemtl, g, o, s), the `v` lines and what the stitching cannot
-// reproduce. Each chunk is then
-// parsed by LoadObj, its polygons left whole, behind copies of the state
-// lines in force at its start (the first mtllib, the last usemtl, g/o and s
-// before it, in file order), so that its faces get the material, smoothing
-// group and shape name the whole-file parse gives them; positive face
-// indices are absolute already. The chunks' vertex arrays are concatenated,
+// reproduce. Each chunk is then parsed by LoadObj, its polygons left whole,
+// behind copies of the state lines in force at its start (the first mtllib,
+// the last usemtl, g/o and s before it, in file order), so that its faces get
+// the material, smoothing group and shape name the whole-file parse gives
+// them; positive face indices are absolute already. A plain chunk (vertex
+// and face lines alone) is parsed by LoadObjWithCallback instead, its faces
+// given what LoadObj gives a face behind those state lines
+// (obj_plain_chunk.h). The chunks' vertex arrays are concatenated,
 // the polygons split into triangles as LoadObj splits them
 // (obj_polygon_split.h: that needs the positions of their corners, which
 // another chunk may hold), and the shapes joined where a `g`/`o` section runs

@@ -38,6 +38,7 @@ template <class Sink>
 void put_scan(Sink& w, size_t chunk, const ChunkScan& scan) {
   w.number(chunk);
   w.number(scan.supported ? 1 : 0);
+  w.number(scan.plain ? 1 : 0);
   for (const Line* l : {&scan.first_mtllib, &scan.last_usemtl, &scan.last_group, &scan.last_smoothing}) {
     w.number(l->at);
     w.number(l->text.size());
@@ -344,6 +345,7 @@ std::vector<size_t> read_scan_bytes(const std::vector<std::byte>& bytes, std::st
     ChunkScan& s = (*scans)[chunk];
     s = ChunkScan{};
     s.supported = r.number() != 0;
+    s.plain = r.number() != 0;
     for (Line* l : {&s.first_mtllib, &s.last_usemtl, &s.last_group, &s.last_smoothing}) {
       const uint64_t at = r.number(), size = r.number();
       if (at > text.size() || size > text.size() - at) throw Error("shared OBJ parse: a line past the text (a bug)");

@@ -1,0 +1,79 @@
+#include "rayform/importers/obj/obj_plain_chunk.h"
+
+#include "rayform/importers/obj/text_stream_buffer.h"
+
+#include <tiny_obj_loader.h>
+
+#include <istream>
+#include <numeric>
+
+namespace rayform::obj {
+namespace {
+
+struct Sink {
+  tinyobj::attrib_t* attrib;
+  tinyobj::mesh_t* mesh;
+  int material;
+  unsigned int smoothing_group;
+  bool positions_from_1 = true;  // false: a corner's position read 0, which LoadObj refuses
+};
+
+void vertex(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
+  std::vector<tinyobj::real_t>& v = static_cast<Sink*>(s)->attrib->vertices;
+  v.insert(v.end(), {x, y, z});
+}
+
+void normal(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) {
+  std::vector<tinyobj::real_t>& v = static_cast<Sink*>(s)->attrib->normals;
+  v.insert(v.end(), {x, y, z});
+}
+
+// LoadObj keeps a `vt` line's first two numbers (the third, w, nowhere).
+void texcoord(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t) {
+  std::vector<tinyobj::real_t>& v = static_cast<Sink*>(s)->attrib->texcoords;
+  v.insert(v.end(), {x, y});
+}
+
+// A face's raw triples: in a plain chunk (ChunkScan::plain) they hold index
+// + 1, 0 for none, which is what LoadObj's fixed indices are plus one, but
+// where a position reads 0.
+void face(void* s, tinyobj::index_t* corners, int count) {
+  Sink& sink = *static_cast<Sink*>(s);
+  tinyobj::mesh_t& m = *sink.mesh;
+  for (int k = 0; k < count; ++k) {
+    sink.positions_from_1 = sink.positions_from_1 && corners[k].vertex_index > 0;
+    m.indices.push_back({corners[k].vertex_index - 1, corners[k].normal_index - 1, corners[k].texcoord_index - 1});
+  }
+  m.num_face_vertices.push_back(static_cast<unsigned char>(count));
+  m.material_ids.push_back(sink.material);
+  m.smoothing_group_ids.push_back(sink.smoothing_group);
+}
+
+}  // namespace
+
+void parse_plain_chunk(std::string_view body, const ChunkScan& scan, const FaceState& state, ChunkParse* r) {
+  *r = ChunkParse{};
+  const size_t faces = std::accumulate(scan.section_faces.begin(), scan.section_faces.end(), size_t(0));
+  tinyobj::shape_t shape;
+  shape.name = state.shape_name;
+  tinyobj::mesh_t& m = shape.mesh;
+  m.indices.reserve(3 * faces);
+  m.num_face_vertices.reserve(faces);
+  m.material_ids.reserve(faces);
+  m.smoothing_group_ids.reserve(faces);
+  r->attrib.vertices.reserve(3 * scan.vertex_lines);
+  Sink sink{&r->attrib, &m, state.material, state.smoothing_group};
+  tinyobj::callback_t callbacks;
+  callbacks.vertex_cb = vertex;
+  callbacks.normal_cb = normal;
+  callbacks.texcoord_cb = texcoord;
+  callbacks.index_cb = face;
+  TextStreamBuffer buffer(body);
+  std::istream in(&buffer);
+  std::string warn, err;
+  r->ok =
+      tinyobj::LoadObjWithCallback(in, callbacks, &sink, nullptr, &warn, &err) && err.empty() && sink.positions_from_1;
+  if (!m.num_face_vertices.empty()) r->shapes.push_back(std::move(shape));
+}
+
+}  // namespace rayform::obj
