@@ -44,7 +44,7 @@ set(RAYFORM_PRIVATE_HEADERS src/accel/mesh_accel_builder.h src/accel/mesh_build_
                             importers/gltf/gltf_accessors.h importers/gltf/gltf_writer_internal.h
                             importers/gltf/gltf_file_access.h importers/gltf/gltf_reader_internal.h
                             importers/obj/mtl_library.h importers/obj/obj_materials.h importers/obj/obj_text_bounds.h importers/obj/obj_parallel_parse.h
-                            importers/obj/obj_parse_bytes.h importers/obj/obj_polygon_split.h
+                            importers/obj/obj_parse_bytes.h importers/obj/obj_plain_chunk.h importers/obj/obj_polygon_split.h
                             importers/obj/obj_smooth_normals.h importers/obj/obj_vertex_weld.h
                             importers/course_txt/course_writer_internal.h importers/file_bytes.h)
 set(_exclude "")
