@@ -18,8 +18,8 @@
 namespace rayform {
 namespace {
 
-// As read_obj_scene chooses (obj_reader.cpp): a text under 1 MiB in one
-// piece; else about 16 chunks per thread.
+// As read_obj_scene chooses (obj_reader.cpp): a text under 1 MiB by one
+// LoadObj; else one chunk on one thread, about 16 chunks per thread on more.
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
 constexpr size_t chunks_per_thread = 16;
 // Elements per block of the copies and checks after the parse.
@@ -45,7 +45,9 @@ ObjGeometry read_obj_geometry(const std::string& path, const ObjGeometryOptions&
   size_t chunk = options.parse_chunk_bytes;
   if (chunk == 0) {
     const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-    chunk = text.size() >= min_parallel_bytes ? text.size() / (chunks_per_thread * threads) + 1 : 0;
+    chunk = text.size() < min_parallel_bytes ? 0
+            : threads > 1                    ? text.size() / (chunks_per_thread * threads) + 1
+                                             : text.size();
   }
   ObjParse parsed;
   // The chunks' warnings are those of the whole text only as a set (a chunk

@@ -278,8 +278,8 @@ void parse_shared(const WorkShare& share, const std::function<void(size_t)>& par
 // The chunks' vertex arrays (and their warnings) concatenated into `o`, the
 // colours kept only when every chunk has them; returns the first vertex of
 // each chunk (0-based), then the count. Each array is sized once and the
-// chunks' pieces copied in by parallel tasks.
-std::vector<size_t> join_vertex_arrays(const std::vector<ChunkResult>& results, const std::vector<ChunkScan>& scans,
+// chunks' pieces copied in by parallel tasks (a single chunk's moved).
+std::vector<size_t> join_vertex_arrays(std::vector<ChunkResult>& results, const std::vector<ChunkScan>& scans,
                                        ObjParse& o) {
   const size_t n = results.size();
   std::vector<size_t> first_vertex(n + 1, 0);  // the first vertex of each chunk (0-based), then the count
@@ -295,6 +295,10 @@ std::vector<size_t> join_vertex_arrays(const std::vector<ChunkResult>& results, 
       {&tinyobj::attrib_t::normals, &o.attrib.normals},
       {&tinyobj::attrib_t::texcoords, &o.attrib.texcoords}};
   if (all_colors) arrays.push_back({&tinyobj::attrib_t::colors, &o.attrib.colors});
+  if (n == 1) {  // one chunk (one thread): its arrays are the joined ones
+    for (const auto& [member, to] : arrays) *to = std::move(results[0].attrib.*member);
+    return first_vertex;
+  }
   std::vector<size_t> at(n + 1);  // where each chunk's piece of one array goes
   for (const auto& [member, to] : arrays) {
     for (size_t k = 0; k < n; ++k) at[k + 1] = at[k] + (results[k].attrib.*member).size();

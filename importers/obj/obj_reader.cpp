@@ -41,9 +41,10 @@ using obj::MtlLibrary;
 using obj::PreloadedMaterials;
 using obj::trim;
 
-// Smaller files are parsed in one piece: the scan and join around a chunked
-// parse do not pay there. Larger ones are chunked on one thread too: plain
-// chunks parse faster than LoadObj (obj_plain_chunk.h).
+// Smaller files are parsed by one LoadObj: the scan and join around a
+// chunked parse do not pay there. Larger ones go through the chunked parse
+// on one thread too, as one chunk (nothing to join): a plain chunk parses
+// faster than LoadObj (obj_plain_chunk.h).
 constexpr size_t min_parallel_bytes = size_t(1) << 20;
 // Chunks of a parallel parse per thread: lines of faces parse slower than
 // lines of vertices, so equal shares of the bytes are unequal shares of the
@@ -186,7 +187,9 @@ class ObjReader {
           text_.size() >= min_parallel_bytes ? text_.size() / (size_t(share->parts) * shared_chunks_per_part) + 1 : 0;
     } else if (chunk == 0) {
       const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-      chunk = text_.size() >= min_parallel_bytes ? text_.size() / (chunks_per_thread * threads) + 1 : 0;
+      chunk = text_.size() < min_parallel_bytes ? 0
+              : threads > 1                     ? text_.size() / (chunks_per_thread * threads) + 1
+                                                : text_.size();
     }
     if (chunk != 0 && chunk != ObjReadOptions::serial && parse_obj_chunked(text_, readers, chunk, &parsed, share))
       return parsed;
