@@ -434,6 +434,58 @@ void join_sections(const std::vector<ChunkScan>& scans, std::vector<ChunkResult>
   }
 }
 
+// Where every face falls in one g/o section and is a triangle (nothing to
+// split) and there are several chunks: each chunk's faces, which the chunks
+// then write straight to their place in the one shape's arrays (no join);
+// else empty.
+std::vector<size_t> one_section_faces(const std::vector<ChunkScan>& scans) {
+  if (scans.size() < 2) return {};
+  std::vector<size_t> faces(scans.size(), 0);
+  size_t section = 0, groups_before = 0;
+  bool any = false;
+  for (size_t k = 0; k < scans.size(); groups_before += scans[k].section_faces.size() - 1, ++k) {
+    if (!scans[k].polygon_vertices_before.empty()) return {};
+    for (size_t j = 0; j < scans[k].section_faces.size(); ++j) {
+      if (scans[k].section_faces[j] == 0) continue;
+      if (any && groups_before + j != section) return {};
+      section = groups_before + j;
+      any = true;
+      faces[k] = scans[k].section_faces[j];
+    }
+  }
+  return any ? faces : std::vector<size_t>{};
+}
+
+// The one section's shape (its arrays sized and the plain chunks' faces in
+// already): the other chunks' faces copied in, its name from the chunk of
+// its first face; false where a face index is past the `vertex_count`
+// vertices (LoadObj warns of that, the reader makes it an error).
+bool join_one_section(const std::vector<ChunkScan>& scans, const std::vector<size_t>& faces,
+                      const std::vector<size_t>& first_face, std::vector<std::string>& plain_names,
+                      std::vector<ChunkResult>& results, size_t vertex_count, ObjParse& o) {
+  const size_t n = results.size();
+  tinyobj::shape_t& shape = o.shapes[0];
+  tinyobj::mesh_t& to = shape.mesh;
+  const size_t first =
+      size_t(std::find_if(faces.begin(), faces.end(), [](size_t f) { return f != 0; }) - faces.begin());
+  shape.name = scans[first].plain ? std::move(plain_names[first]) : results[first].shapes[0].name;
+  std::vector<uint8_t> indices_ok(n, 1);
+  tbb::parallel_for(size_t(0), n, [&](size_t k) {
+    const size_t f = first_face[k];
+    if (!scans[k].plain && faces[k] != 0) {
+      const tinyobj::mesh_t& m = results[k].shapes[0].mesh;  // one shape of faces[k] triangles (shapes_match_scan)
+      std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(3 * f));
+      std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(), to.num_face_vertices.begin() + ptrdiff_t(f));
+      std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + ptrdiff_t(f));
+      std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(),
+                to.smoothing_group_ids.begin() + ptrdiff_t(f));
+    }
+    for (size_t c = 3 * f; c < 3 * first_face[k + 1]; ++c)
+      if (to.indices[c].vertex_index < 0 || size_t(to.indices[c].vertex_index) >= vertex_count) indices_ok[k] = 0;
+  });
+  return std::find(indices_ok.begin(), indices_ok.end(), 0) == indices_ok.end();
+}
+
 }  // namespace
 
 bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& readers, size_t chunk_bytes, ObjParse* out,
@@ -448,6 +500,23 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     if (std::any_of(scans.begin(), scans.end(), [](const ChunkScan& s) { return !s.supported; })) return false;
   }
   const std::vector<std::string> prefixes = chunk_prefixes(scans);
+  ObjParse& o = *out;
+  o = ObjParse{};
+
+  // One section of triangles (not shared): its arrays sized once, the plain
+  // chunks' faces parsed straight into them, the others' copied in after.
+  const std::vector<size_t> direct_faces = share && share->shared() ? std::vector<size_t>{} : one_section_faces(scans);
+  const bool direct = !direct_faces.empty();
+  std::vector<size_t> first_face(n + 1, 0);  // direct: each chunk's first face in the shape
+  std::vector<std::string> plain_names(n);   // direct: the shape name a plain chunk's faces get
+  if (direct) {
+    for (size_t k = 0; k < n; ++k) first_face[k + 1] = first_face[k] + direct_faces[k];
+    tinyobj::mesh_t& m = o.shapes.emplace_back().mesh;
+    resize_on_present_pages(m.indices, 3 * first_face[n]);
+    resize_on_present_pages(m.num_face_vertices, first_face[n]);
+    resize_on_present_pages(m.material_ids, first_face[n]);
+    resize_on_present_pages(m.smoothing_group_ids, first_face[n]);
+  }
 
   // Each chunk with its polygons left whole (split below, once every position is known).
   std::vector<ChunkResult> results(n);
@@ -458,9 +527,20 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
       obj::FaceState state;
       std::string warn;
       if (!face_state(prefixes[k], readers, &state, &warn)) return;  // r.ok stays false: the whole text falls back
-      obj::parse_plain_chunk(body, scans[k], state, &r);
+      if (direct) {
+        tinyobj::mesh_t& m = o.shapes[0].mesh;
+        const size_t f = first_face[k];
+        obj::parse_plain_chunk_into(body, scans[k], state,
+                                    {m.indices.data() + 3 * f, m.num_face_vertices.data() + f,
+                                     m.material_ids.data() + f, m.smoothing_group_ids.data() + f, direct_faces[k]},
+                                    &r);
+        r.ok = r.ok && r.attrib.vertices.size() == 3 * scans[k].vertex_lines;
+        plain_names[k] = std::move(state.shape_name);
+      } else {
+        obj::parse_plain_chunk(body, scans[k], state, &r);
+        r.ok = r.ok && shapes_match_scan(r, scans[k]);
+      }
       r.warn = std::move(warn);
-      r.ok = r.ok && shapes_match_scan(r, scans[k]);
       return;
     }
     TextStreamBuffer buffer(prefixes[k], body);
@@ -482,9 +562,8 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
   else tbb::parallel_for(size_t(0), n, parse_chunk);
   if (std::any_of(results.begin(), results.end(), [](const ChunkResult& r) { return !r.ok; })) return false;
 
-  ObjParse& o = *out;
-  o = ObjParse{};
   const std::vector<size_t> first_vertex = join_vertex_arrays(results, scans, o);
+  if (direct) return join_one_section(scans, direct_faces, first_face, plain_names, results, first_vertex[n], o);
   // LoadObj warns of a face index past the last vertex (the reader makes that an error).
   const size_t vertex_count = first_vertex[n];
   if (!face_indices_in_range(results, vertex_count)) return false;

@@ -12,9 +12,12 @@ namespace {
 
 struct Sink {
   tinyobj::attrib_t* attrib;
-  tinyobj::mesh_t* mesh;
+  tinyobj::mesh_t* mesh;  // the faces go here, or to `target` where it is set
   int material;
   unsigned int smoothing_group;
+  const TriangleTarget* target = nullptr;
+  size_t faces = 0;              // written to target so far
+  bool fits = true;              // every face written to target: a triangle, within its length
   bool positions_from_1 = true;  // false: a corner's position read 0, which LoadObj refuses
 };
 
@@ -39,6 +42,22 @@ void texcoord(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t) {
 // where a position reads 0.
 void face(void* s, tinyobj::index_t* corners, int count) {
   Sink& sink = *static_cast<Sink*>(s);
+  if (const TriangleTarget* to = sink.target) {
+    if (count != 3 || sink.faces == to->faces) {
+      sink.fits = false;
+      return;
+    }
+    const size_t f = sink.faces++;
+    for (int k = 0; k < 3; ++k) {
+      sink.positions_from_1 = sink.positions_from_1 && corners[k].vertex_index > 0;
+      to->corners[3 * f + size_t(k)] = {corners[k].vertex_index - 1, corners[k].normal_index - 1,
+                                        corners[k].texcoord_index - 1};
+    }
+    to->face_corners[f] = 3;
+    to->materials[f] = sink.material;
+    to->smoothing_groups[f] = sink.smoothing_group;
+    return;
+  }
   tinyobj::mesh_t& m = *sink.mesh;
   for (int k = 0; k < count; ++k) {
     sink.positions_from_1 = sink.positions_from_1 && corners[k].vertex_index > 0;
@@ -49,20 +68,22 @@ void face(void* s, tinyobj::index_t* corners, int count) {
   m.smoothing_group_ids.push_back(sink.smoothing_group);
 }
 
-}  // namespace
-
-void parse_plain_chunk(std::string_view body, const ChunkScan& scan, const FaceState& state, ChunkParse* r) {
+// Both parses: the faces to `to` where it is set, else to a shape in r.
+void parse(std::string_view body, const ChunkScan& scan, const FaceState& state, const TriangleTarget* to,
+           ChunkParse* r) {
   *r = ChunkParse{};
-  const size_t faces = std::accumulate(scan.section_faces.begin(), scan.section_faces.end(), size_t(0));
   tinyobj::shape_t shape;
   shape.name = state.shape_name;
   tinyobj::mesh_t& m = shape.mesh;
-  m.indices.reserve(3 * faces);
-  m.num_face_vertices.reserve(faces);
-  m.material_ids.reserve(faces);
-  m.smoothing_group_ids.reserve(faces);
+  if (!to) {
+    const size_t faces = std::accumulate(scan.section_faces.begin(), scan.section_faces.end(), size_t(0));
+    m.indices.reserve(3 * faces);
+    m.num_face_vertices.reserve(faces);
+    m.material_ids.reserve(faces);
+    m.smoothing_group_ids.reserve(faces);
+  }
   r->attrib.vertices.reserve(3 * scan.vertex_lines);
-  Sink sink{&r->attrib, &m, state.material, state.smoothing_group};
+  Sink sink{&r->attrib, &m, state.material, state.smoothing_group, to};
   tinyobj::callback_t callbacks;
   callbacks.vertex_cb = vertex;
   callbacks.normal_cb = normal;
@@ -71,9 +92,20 @@ void parse_plain_chunk(std::string_view body, const ChunkScan& scan, const FaceS
   TextStreamBuffer buffer(body);
   std::istream in(&buffer);
   std::string warn, err;
-  r->ok =
-      tinyobj::LoadObjWithCallback(in, callbacks, &sink, nullptr, &warn, &err) && err.empty() && sink.positions_from_1;
+  r->ok = tinyobj::LoadObjWithCallback(in, callbacks, &sink, nullptr, &warn, &err) && err.empty() &&
+          sink.positions_from_1 && sink.fits && (!to || sink.faces == to->faces);
   if (!m.num_face_vertices.empty()) r->shapes.push_back(std::move(shape));
+}
+
+}  // namespace
+
+void parse_plain_chunk(std::string_view body, const ChunkScan& scan, const FaceState& state, ChunkParse* r) {
+  parse(body, scan, state, nullptr, r);
+}
+
+void parse_plain_chunk_into(std::string_view body, const ChunkScan& scan, const FaceState& state,
+                            const TriangleTarget& to, ChunkParse* r) {
+  parse(body, scan, state, &to, r);
 }
 
 }  // namespace rayform::obj

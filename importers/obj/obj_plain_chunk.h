@@ -9,6 +9,9 @@
 #include "rayform/importers/obj/obj_chunk_scan.h"
 #include "rayform/importers/obj/obj_parse_bytes.h"
 
+#include <tiny_obj_loader.h>
+
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -30,5 +33,21 @@ struct FaceState {
 // falls back to it, for its message); r->warn stays empty (LoadObj warns
 // only of index bounds there, which the chunked parse checks itself).
 void parse_plain_chunk(std::string_view body, const ChunkScan& scan, const FaceState& state, ChunkParse* r);
+
+// Where parse_plain_chunk_into writes a chunk's faces, all triangles: its
+// place in the joined shape's arrays, `faces` long (3 faces corners).
+struct TriangleTarget {
+  tinyobj::index_t* corners = nullptr;
+  unsigned char* face_corners = nullptr;
+  int* materials = nullptr;
+  unsigned int* smoothing_groups = nullptr;
+  size_t faces = 0;
+};
+
+// As parse_plain_chunk, but the faces are written to `to` (r->shapes stays
+// empty): r->ok also needs exactly to.faces faces, each of three corners
+// (nothing is written past them).
+void parse_plain_chunk_into(std::string_view body, const ChunkScan& scan, const FaceState& state,
+                            const TriangleTarget& to, ChunkParse* r);
 
 }  // namespace rayform::obj

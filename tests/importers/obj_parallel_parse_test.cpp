@@ -199,6 +199,33 @@ TEST_F(ObjParallelParse, PolygonsAreSplitAsLoadObjSplitsThem) {
   EXPECT_FALSE(chunked(big + "\n", 8));
 }
 
+// One g/o section of triangles (a name, a material and a smoothing group
+// set at the top, a material switch half-way): the chunks write the faces
+// straight into the one shape's arrays, plain ones as they parse, the
+// others after; the same shapes as LoadObj, bit for bit.
+TEST_F(ObjParallelParse, OneSectionOfTrianglesIsJoinedInPlace) {
+  const int n = 12;
+  std::string text = "mtllib m.mtl\no the name\nusemtl red\ns 2\n" + grid_attributes(n);
+  for (int y = 0; y + 1 < n; ++y) {
+    if (y == n / 2) text += "usemtl green\n";
+    for (int x = 0; x + 1 < n; ++x) text += test::cell(n, x, y, x + 2 * y);
+  }
+  const ObjParse whole = test::load_obj_whole(text);
+  ASSERT_EQ(whole.shapes.size(), 1u);
+  EXPECT_EQ(whole.shapes[0].name, "the name");
+  for (size_t chunk : {size_t(50), size_t(333), size_t(4000)}) {
+    ObjParse part;
+    ASSERT_TRUE(parse_obj_chunked(
+        text, [] { return std::make_unique<test::NoMaterials>(); }, chunk, &part))
+        << chunk;
+    test::expect_same_shapes(whole, part, "chunks of " + std::to_string(chunk));
+    test::expect_same_vertices(whole, part, "chunks of " + std::to_string(chunk));
+  }
+  expect_chunked_same(write("one-section.obj", text));
+  // Faces before the first g/o line and after it are two sections: joined as before.
+  expect_chunked_same(write("two-sections.obj", grid_attributes(3) + "f 1 2 5\ng a\nf 2 3 6\n"));
+}
+
 TEST_F(ObjParallelParse, SharedAssets) {
   RAYFORM_REQUIRE_SHARED();
   size_t files = 0;
