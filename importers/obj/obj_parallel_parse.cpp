@@ -300,7 +300,10 @@ std::vector<size_t> join_vertex_arrays(std::vector<ChunkResult>& results, const 
     return first_vertex;
   }
   std::vector<size_t> at(n + 1);  // where each chunk's piece of one array goes
-  for (const auto& [member, to] : arrays) {
+  for (const auto& array : arrays) {
+    // Named, not bound: clang's lambdas may not capture a structured binding.
+    Array tinyobj::attrib_t::*const member = array.first;
+    Array* const to = array.second;
     for (size_t k = 0; k < n; ++k) at[k + 1] = at[k] + (results[k].attrib.*member).size();
     resize_on_present_pages(*to, at[n]);
     tbb::parallel_for(size_t(0), n, [&](size_t k) {
