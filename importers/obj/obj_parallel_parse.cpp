@@ -15,6 +15,7 @@
 #include <exception>
 #include <cstring>
 #include <istream>
+#include <span>
 #include <sstream>
 
 namespace rayform {
@@ -314,6 +315,23 @@ std::vector<size_t> join_vertex_arrays(std::vector<ChunkResult>& results, const 
   return first_vertex;
 }
 
+// Whether every corner names one of the `vertex_count` joined vertices.
+bool positions_in_range(std::span<const tinyobj::index_t> corners, size_t vertex_count) {
+  return std::all_of(corners.begin(), corners.end(), [&](const tinyobj::index_t& ix) {
+    return ix.vertex_index >= 0 && size_t(ix.vertex_index) < vertex_count;
+  });
+}
+
+// A piece's face arrays copied into `to` from its corner `corner` and face `face` on.
+void copy_faces(const tinyobj::mesh_t& from, tinyobj::mesh_t& to, size_t corner, size_t face) {
+  std::copy(from.indices.begin(), from.indices.end(), to.indices.begin() + ptrdiff_t(corner));
+  std::copy(from.num_face_vertices.begin(), from.num_face_vertices.end(),
+            to.num_face_vertices.begin() + ptrdiff_t(face));
+  std::copy(from.material_ids.begin(), from.material_ids.end(), to.material_ids.begin() + ptrdiff_t(face));
+  std::copy(from.smoothing_group_ids.begin(), from.smoothing_group_ids.end(),
+            to.smoothing_group_ids.begin() + ptrdiff_t(face));
+}
+
 // Whether every face index of every chunk names a vertex of the `vertex_count`
 // joined ones.
 bool face_indices_in_range(const std::vector<ChunkResult>& results, size_t vertex_count) {
@@ -321,8 +339,7 @@ bool face_indices_in_range(const std::vector<ChunkResult>& results, size_t verte
   std::vector<uint8_t> indices_ok(n, 1);
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     for (const tinyobj::shape_t& s : results[k].shapes)
-      for (const tinyobj::index_t& ix : s.mesh.indices)
-        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) indices_ok[k] = 0;
+      if (!positions_in_range(s.mesh.indices, vertex_count)) indices_ok[k] = 0;
   });
   return std::find(indices_ok.begin(), indices_ok.end(), 0) == indices_ok.end();
 }
@@ -424,13 +441,7 @@ void join_sections(const std::vector<ChunkScan>& scans, std::vector<ChunkResult>
                                 to.material_ids.data() + face, to.smoothing_group_ids.data() + face);
           return;
         }
-        const tinyobj::mesh_t& m = i == first ? head : results[pieces[i].chunk].shapes[pieces[i].shape].mesh;
-        std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(corner));
-        std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(),
-                  to.num_face_vertices.begin() + ptrdiff_t(face));
-        std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + ptrdiff_t(face));
-        std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(),
-                  to.smoothing_group_ids.begin() + ptrdiff_t(face));
+        copy_faces(i == first ? head : results[pieces[i].chunk].shapes[pieces[i].shape].mesh, to, corner, face);
       });
     }
     first = last;
@@ -475,16 +486,9 @@ bool join_one_section(const std::vector<ChunkScan>& scans, const std::vector<siz
   std::vector<uint8_t> indices_ok(n, 1);
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     const size_t f = first_face[k];
-    if (!scans[k].plain && faces[k] != 0) {
-      const tinyobj::mesh_t& m = results[k].shapes[0].mesh;  // one shape of faces[k] triangles (shapes_match_scan)
-      std::copy(m.indices.begin(), m.indices.end(), to.indices.begin() + ptrdiff_t(3 * f));
-      std::copy(m.num_face_vertices.begin(), m.num_face_vertices.end(), to.num_face_vertices.begin() + ptrdiff_t(f));
-      std::copy(m.material_ids.begin(), m.material_ids.end(), to.material_ids.begin() + ptrdiff_t(f));
-      std::copy(m.smoothing_group_ids.begin(), m.smoothing_group_ids.end(),
-                to.smoothing_group_ids.begin() + ptrdiff_t(f));
-    }
-    for (size_t c = 3 * f; c < 3 * first_face[k + 1]; ++c)
-      if (to.indices[c].vertex_index < 0 || size_t(to.indices[c].vertex_index) >= vertex_count) indices_ok[k] = 0;
+    // A chunk not plain holds one shape of faces[k] triangles (shapes_match_scan).
+    if (!scans[k].plain && faces[k] != 0) copy_faces(results[k].shapes[0].mesh, to, 3 * f, f);
+    if (!positions_in_range(std::span(to.indices).subspan(3 * f, 3 * faces[k]), vertex_count)) indices_ok[k] = 0;
   });
   return std::find(indices_ok.begin(), indices_ok.end(), 0) == indices_ok.end();
 }
@@ -577,8 +581,7 @@ bool parse_obj_chunked(std::string_view text, const MaterialReaderFactory& reade
     // The index check above saw only this part's chunks.
     std::vector<uint8_t> ok(o.shapes.size(), 1);
     tbb::parallel_for(size_t(0), o.shapes.size(), [&](size_t i) {
-      for (const tinyobj::index_t& ix : o.shapes[i].mesh.indices)
-        if (ix.vertex_index < 0 || size_t(ix.vertex_index) >= vertex_count) ok[i] = 0;
+      if (!positions_in_range(o.shapes[i].mesh.indices, vertex_count)) ok[i] = 0;
     });
     if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return false;
   }
