@@ -40,6 +40,12 @@ void texcoord(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t) {
 // A face's raw triples: in a plain chunk (ChunkScan::plain) they hold index
 // + 1, 0 for none, which is what LoadObj's fixed indices are plus one, but
 // where a position reads 0.
+// A raw triple as LoadObj's indices (noting a position that read 0).
+tinyobj::index_t fixed(Sink& sink, const tinyobj::index_t& raw) {
+  sink.positions_from_1 = sink.positions_from_1 && raw.vertex_index > 0;
+  return {raw.vertex_index - 1, raw.normal_index - 1, raw.texcoord_index - 1};
+}
+
 void face(void* s, tinyobj::index_t* corners, int count) {
   Sink& sink = *static_cast<Sink*>(s);
   if (const TriangleTarget* to = sink.target) {
@@ -48,21 +54,14 @@ void face(void* s, tinyobj::index_t* corners, int count) {
       return;
     }
     const size_t f = sink.faces++;
-    for (int k = 0; k < 3; ++k) {
-      sink.positions_from_1 = sink.positions_from_1 && corners[k].vertex_index > 0;
-      to->corners[3 * f + size_t(k)] = {corners[k].vertex_index - 1, corners[k].normal_index - 1,
-                                        corners[k].texcoord_index - 1};
-    }
+    for (int k = 0; k < 3; ++k) to->corners[3 * f + size_t(k)] = fixed(sink, corners[k]);
     to->face_corners[f] = 3;
     to->materials[f] = sink.material;
     to->smoothing_groups[f] = sink.smoothing_group;
     return;
   }
   tinyobj::mesh_t& m = *sink.mesh;
-  for (int k = 0; k < count; ++k) {
-    sink.positions_from_1 = sink.positions_from_1 && corners[k].vertex_index > 0;
-    m.indices.push_back({corners[k].vertex_index - 1, corners[k].normal_index - 1, corners[k].texcoord_index - 1});
-  }
+  for (int k = 0; k < count; ++k) m.indices.push_back(fixed(sink, corners[k]));
   m.num_face_vertices.push_back(static_cast<unsigned char>(count));
   m.material_ids.push_back(sink.material);
   m.smoothing_group_ids.push_back(sink.smoothing_group);
