@@ -45,7 +45,8 @@ void angle_weighted_normals(const std::vector<tinyobj::index_t>& idx, size_t sta
 // of a block of faces at once (only of the faces with a corner in the
 // range), with each corner's position (or `none` where it adds nothing),
 // then summed by position ranges at once, each in face order: every range's
-// task reads the block's positions, 4 bytes a corner.
+// task reads the block's positions, 4 bytes a corner. On one thread, face
+// by face without the block.
 void sum_range(const std::vector<float>& vertices, const ObjFaces& faces, size_t lo, size_t hi,
                std::vector<vec3>& sums) {
   constexpr uint32_t none = ~0u;
@@ -55,10 +56,23 @@ void sum_range(const std::vector<float>& vertices, const ObjFaces& faces, size_t
     const size_t v = size_t(idx[corner].vertex_index);
     return v >= lo && v < hi;
   };
+  const size_t ranges = size_t(tbb::this_task_arena::max_concurrency());
+  if (ranges == 1) {
+    // One thread: each face's corners added as they are weighed, in the same order.
+    for (size_t f = 0; f < face_count; ++f) {
+      const size_t s = faces.face_start[f];
+      if (faces.face_corners[f] != 3 || !(in_range(s) || in_range(s + 1) || in_range(s + 2))) continue;
+      vec3 weighted[3];
+      uint8_t adds[3];
+      angle_weighted_normals(idx, s, vertices, weighted, adds);
+      for (int k = 0; k < 3; ++k)
+        if (adds[k] && in_range(s + k)) sums[size_t(idx[s + k].vertex_index)] += weighted[k];
+    }
+    return;
+  }
   constexpr size_t block = size_t(1) << 16;
   std::vector<vec3> weighted(3 * std::min(face_count, block));
   std::vector<uint32_t> position(weighted.size());  // per corner of the block: its position, or none
-  const size_t ranges = size_t(tbb::this_task_arena::max_concurrency());
   for (size_t first = 0; first < face_count; first += block) {
     const size_t last = std::min(face_count, first + block);
     tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1024), [&](const tbb::blocked_range<size_t>& r) {
