@@ -12,6 +12,7 @@
 #include "rayform/base/work_share.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <bit>
 #include <cmath>
@@ -103,16 +104,24 @@ TEST(ObjSharedRead, SmoothNormalSumsAreTheUnsharedOnesOnEveryPart) {
       size_t nonzero = 0;
       for (const vec3& n : alone) nonzero += n != vec3(0.f);
       EXPECT_GT(nonzero, 0u) << "the test's sums are not all zero";
+      // On one thread (its own loop), alone and shared.
+      std::vector<vec3> one_thread;
+      tbb::task_arena(1).execute([&] { one_thread = obj::smooth_normal_sums(parse.attrib.vertices, of); });
+      expect_same_bits(alone, one_thread, "shape '" + shape.name + "', one thread");
       for (int parts : {2, 3}) {
-        std::vector<std::vector<vec3>> sums(static_cast<size_t>(parts));
-        const std::vector<int> calls = run_parts(parts, [&](int p, const WorkShare& share) {
-          sums[size_t(p)] = obj::smooth_normal_sums(parse.attrib.vertices, of, &share);
-        });
-        for (int p = 0; p < parts; ++p) {
-          const std::string what =
-              "shape '" + shape.name + "', part " + std::to_string(p) + " of " + std::to_string(parts);
-          EXPECT_EQ(calls[size_t(p)], 1) << what;
-          expect_same_bits(alone, sums[size_t(p)], what);
+        for (const int threads : {0, 1}) {  // 0: the default arena
+          std::vector<std::vector<vec3>> sums(static_cast<size_t>(parts));
+          const std::vector<int> calls = run_parts(parts, [&](int p, const WorkShare& share) {
+            auto sum = [&] { sums[size_t(p)] = obj::smooth_normal_sums(parse.attrib.vertices, of, &share); };
+            if (threads == 1) tbb::task_arena(1).execute(sum);
+            else sum();
+          });
+          for (int p = 0; p < parts; ++p) {
+            const std::string what = "shape '" + shape.name + "', part " + std::to_string(p) + " of " +
+                                     std::to_string(parts) + (threads == 1 ? ", one thread" : "");
+            EXPECT_EQ(calls[size_t(p)], 1) << what;
+            expect_same_bits(alone, sums[size_t(p)], what);
+          }
         }
       }
     }
