@@ -1,5 +1,11 @@
 #include "rayform/importers/obj/obj_chunk_scan.h"
 
+#include <bit>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace rayform::obj {
 namespace {
 
@@ -29,18 +35,26 @@ bool plain_corner(std::string_view c) {
 // `plain` is cleared where a corner names a uv or normal and is not
 // plain_corner: tinyobjloader's raw triple gives 0 for a field that is not
 // there and for one that reads 0, which LoadObj refuses (a position, always
-// there, the callback parse checks itself).
-int plain_face_corners(std::string_view s, bool& plain) {
-  if (s.find('-') != std::string_view::npos) return 0;
+// there, the callback parse checks itself). `simple` is cleared where any
+// corner is not plain_corner.
+int plain_face_corners(std::string_view s, bool& plain, bool& simple) {
   int corners = 0;
   const size_t n = s.size();
   for (size_t i = 0;; ++corners) {
     while (i < n && is_space(s[i])) ++i;
     if (i == n) break;
     const size_t start = i;
-    bool slash = false;  // the corner names a uv or normal
-    for (; i < n && !is_space(s[i]); ++i) slash |= s[i] == '/';
-    if (slash && plain) plain = plain_corner(s.substr(start, i - start));
+    bool slash = false, minus = false;  // the corner names a uv or normal; has a '-'
+    for (; i < n && !is_space(s[i]); ++i) {
+      slash |= s[i] == '/';
+      minus |= s[i] == '-';
+    }
+    if (minus) return 0;
+    if ((slash && plain) || simple) {
+      const bool form = plain_corner(s.substr(start, i - start));
+      if (slash) plain = plain && form;
+      simple = simple && form;
+    }
     if (i - start < 10) continue;
     for (size_t k = start, digits = 0; k < i; ++k) {
       digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
@@ -62,48 +76,100 @@ size_t numbers(std::string_view s) {
   return words;
 }
 
+// The first '\n', '\r' or '\0' in [p, stop) of data, or stop (16 bytes a
+// step with SSE2, as next_line_feed).
+size_t next_line_end_or_nul(const char* data, size_t p, size_t stop) {
+#if defined(__SSE2__)
+  const __m128i lf = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r'), nul = _mm_setzero_si128();
+  for (; p + 16 <= stop; p += 16) {
+    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(data + p));
+    const unsigned hits = unsigned(_mm_movemask_epi8(
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, lf), _mm_cmpeq_epi8(x, cr)), _mm_cmpeq_epi8(x, nul))));
+    if (hits) return p + size_t(std::countr_zero(hits));
+  }
+#endif
+  for (; p < stop; ++p)
+    if (data[p] == '\n' || data[p] == '\r' || data[p] == '\0') return p;
+  return stop;
+}
+
+// What decides ChunkScan::faces_read_from, gathered line by line.
+struct FaceLines {
+  size_t first = ChunkScan::none;  // the first face line's offset in the chunk
+  bool simple = true;              // every corner so far plain_corner
+  bool numbers_after = false;      // a v, vt or vn line after the first face line
+};
+
+// Sorts one line (t: without its leading blanks; the chunk starts at
+// `begin`) into `scan`; false where the chunk turned out unsupported.
+bool scan_line(ChunkScan& scan, FaceLines& faces, size_t begin, const Line& line, std::string_view t) {
+  auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
+  if (t.empty() || t[0] == '#') return true;
+  if (is_vertex_line(t)) {
+    if (scan.vertex_lines++ == 0 && numbers(t.substr(2)) >= 6) scan.plain = false;
+    faces.numbers_after = faces.numbers_after || faces.first != ChunkScan::none;
+    return true;
+  }
+  if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) {
+    faces.numbers_after = faces.numbers_after || faces.first != ChunkScan::none;
+    return true;
+  }
+  if ((t[0] == 'v' && at(1) == 'w' && is_space(at(2))) || ((t[0] == 'l' || t[0] == 'p') && is_space(at(1)))) {
+    scan.supported = false;  // skin weights, lines, points
+  } else if (t[0] == 'f' && is_space(at(1))) {
+    if (faces.first == ChunkScan::none) faces.first = line.at - begin;
+    const int corners = plain_face_corners(t.substr(2), scan.plain, faces.simple);
+    if (corners < 3) scan.supported = false;
+    if (corners > 3) scan.polygon_vertices_before.push_back(scan.vertex_lines);
+    ++scan.section_faces.back();
+  } else if (t.compare(0, 6, "usemtl") == 0) {
+    scan.last_usemtl = line;
+    scan.plain = false;
+  } else if (t.compare(0, 6, "mtllib") == 0 && is_space(at(6))) {
+    if (scan.first_mtllib.empty()) scan.first_mtllib = line;
+    scan.plain = false;
+  } else if ((t[0] == 'g' || t[0] == 'o') && is_space(at(1))) {
+    scan.last_group = line;
+    scan.section_faces.push_back(0);
+    scan.plain = false;
+  } else if (t[0] == 't' && is_space(at(1))) {
+    scan.supported = false;  // tags
+  } else if (t[0] == 's' && is_space(at(1))) {
+    scan.last_smoothing = line;
+    scan.plain = false;
+  }
+  return scan.supported;
+}
+
 }  // namespace
 
+// One pass over the chunk: each line's end is found together with the bytes
+// that make it unsupported (a '\0', or a lone '\r', which ends a line too
+// in tinyobjloader).
 ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
   ChunkScan scan;
-  const std::string_view chunk = text.substr(begin, end - begin);
-  if (chunk.find('\0') != std::string_view::npos) scan.supported = false;
-  for (size_t r = chunk.find('\r'); scan.supported && r != std::string_view::npos; r = chunk.find('\r', r + 1))
-    if (r + 1 == chunk.size() || chunk[r + 1] != '\n') scan.supported = false;  // a lone '\r' ends a line too
-  if (!scan.supported) return scan;
-  for_each_line(text, begin, end, [&](const Line& line, std::string_view t) {
-    auto at = [&](size_t i) { return i < t.size() ? t[i] : '\0'; };
-    if (t.empty() || t[0] == '#') return true;
-    if (is_vertex_line(t)) {
-      if (scan.vertex_lines++ == 0 && numbers(t.substr(2)) >= 6) scan.plain = false;
-      return true;
+  FaceLines faces;
+  const char* data = text.data();
+  for (size_t p = begin; p < end;) {
+    const size_t q = next_line_end_or_nul(data, p, end);
+    size_t next = q < end ? q + 1 : end;
+    if (q < end && data[q] != '\n') {
+      if (data[q] != '\r' || q + 1 == end || data[q + 1] != '\n') {
+        ChunkScan unsupported;
+        unsupported.supported = false;
+        return unsupported;
+      }
+      next = q + 2;  // "\r\n"
     }
-    if (t[0] == 'v' && (at(1) == 'n' || at(1) == 't') && is_space(at(2))) return true;
-    if ((t[0] == 'v' && at(1) == 'w' && is_space(at(2))) || ((t[0] == 'l' || t[0] == 'p') && is_space(at(1)))) {
-      scan.supported = false;  // skin weights, lines, points
-    } else if (t[0] == 'f' && is_space(at(1))) {
-      const int corners = plain_face_corners(t.substr(2), scan.plain);
-      if (corners < 3) scan.supported = false;
-      if (corners > 3) scan.polygon_vertices_before.push_back(scan.vertex_lines);
-      ++scan.section_faces.back();
-    } else if (t.compare(0, 6, "usemtl") == 0) {
-      scan.last_usemtl = line;
-      scan.plain = false;
-    } else if (t.compare(0, 6, "mtllib") == 0 && is_space(at(6))) {
-      if (scan.first_mtllib.empty()) scan.first_mtllib = line;
-      scan.plain = false;
-    } else if ((t[0] == 'g' || t[0] == 'o') && is_space(at(1))) {
-      scan.last_group = line;
-      scan.section_faces.push_back(0);
-      scan.plain = false;
-    } else if (t[0] == 't' && is_space(at(1))) {
-      scan.supported = false;  // tags
-    } else if (t[0] == 's' && is_space(at(1))) {
-      scan.last_smoothing = line;
-      scan.plain = false;
-    }
-    return scan.supported;
-  });
+    const Line line{text.substr(p, q - p), p};
+    std::string_view t = line.text;
+    size_t lead = 0;
+    while (lead < t.size() && is_space(t[lead])) ++lead;
+    t.remove_prefix(lead);
+    if (!scan_line(scan, faces, begin, line, t)) return scan;
+    p = next;
+  }
+  if (scan.plain && faces.simple && !faces.numbers_after) scan.faces_read_from = faces.first;
   return scan;
 }
 

@@ -46,6 +46,7 @@ void put_scan(Sink& w, size_t chunk, const ChunkScan& scan) {
   w.array(scan.section_faces);
   w.number(scan.vertex_lines);
   w.array(scan.polygon_vertices_before);
+  w.number(scan.faces_read_from);
 }
 
 // Whether no corner names a uv or a normal (then a corner is its position index alone).
@@ -355,6 +356,9 @@ std::vector<size_t> read_scan_bytes(const std::vector<std::byte>& bytes, std::st
     if (s.section_faces.empty()) throw Error("shared OBJ parse: a scan without sections (a bug)");
     s.vertex_lines = size_t(r.number());
     r.array(&s.polygon_vertices_before);
+    s.faces_read_from = size_t(r.number());
+    if (s.faces_read_from != ChunkScan::none && s.faces_read_from > text.size())
+      throw Error("shared OBJ parse: faces past the text (a bug)");
     read.push_back(size_t(chunk));
   }
   return read;

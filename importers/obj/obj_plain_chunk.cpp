@@ -6,6 +6,8 @@
 
 #include <istream>
 #include <numeric>
+#include <string_view>
+#include <vector>
 
 namespace rayform::obj {
 namespace {
@@ -67,7 +69,56 @@ void face(void* s, tinyobj::index_t* corners, int count) {
   m.smoothing_group_ids.push_back(sink.smoothing_group);
 }
 
+// A face in the numbers handed to tinyobjloader, where the scan put none:
+// the parse is refused (and the chunked parse falls back).
+void unexpected_face(void* s, tinyobj::index_t*, int) { static_cast<Sink*>(s)->fits = false; }
+
+// A corner of the form i, i/j, i//k or i/j/k (digits only) as
+// tinyobjloader's raw triple: each index + 1, 0 for none. False for any
+// other form (the scan said there is none).
+bool raw_triple(std::string_view word, tinyobj::index_t* raw) {
+  int field[3] = {0, 0, 0};  // position, uv, normal
+  int f = 0;
+  for (const char c : word) {
+    if (c == '/') {
+      if (++f > 2) return false;
+    } else if (c >= '0' && c <= '9') {
+      field[f] = 10 * field[f] + (c - '0');
+    } else {
+      return false;
+    }
+  }
+  *raw = {field[0], field[2], field[1]};  // index_t: vertex, normal, texcoord
+  return true;
+}
+
+// The face lines of `text` (ChunkScan::faces_read_from on): each face's raw
+// triples to `face`, as tinyobjloader's callback reader hands them.
+void read_faces(std::string_view text, Sink& sink) {
+  std::vector<tinyobj::index_t> corners;
+  for_each_line(text, 0, text.size(), [&](const Line&, std::string_view t) {
+    if (t.size() < 2 || t[0] != 'f' || !is_space(t[1])) return true;
+    corners.clear();
+    for (size_t i = 2; i < t.size();) {
+      while (i < t.size() && is_space(t[i])) ++i;
+      if (i == t.size()) break;
+      const size_t start = i;
+      while (i < t.size() && !is_space(t[i])) ++i;
+      if (!raw_triple(t.substr(start, i - start), &corners.emplace_back())) {
+        sink.fits = false;
+        return false;
+      }
+    }
+    face(&sink, corners.data(), int(corners.size()));
+    return true;
+  });
+}
+
 // Both parses: the faces to `to` where it is set, else to a shape in r.
+// Where the scan allows it (ChunkScan::faces_read_from), tinyobjloader reads
+// only the lines before the first face (every number of the chunk) and the
+// face lines after it are read here: their corners are decimals from 1 of
+// at most 9 digits, which atoi (tinyobjloader's) reads alike.
 void parse(std::string_view body, const ChunkScan& scan, const FaceState& state, const TriangleTarget* to,
            ChunkParse* r) {
   *r = ChunkParse{};
@@ -87,12 +138,14 @@ void parse(std::string_view body, const ChunkScan& scan, const FaceState& state,
   callbacks.vertex_cb = vertex;
   callbacks.normal_cb = normal;
   callbacks.texcoord_cb = texcoord;
-  callbacks.index_cb = face;
-  TextStreamBuffer buffer(body);
+  const bool faces_here = scan.faces_read_from <= body.size();
+  callbacks.index_cb = faces_here ? unexpected_face : face;
+  TextStreamBuffer buffer(faces_here ? body.substr(0, scan.faces_read_from) : body);
   std::istream in(&buffer);
   std::string warn, err;
-  r->ok = tinyobj::LoadObjWithCallback(in, callbacks, &sink, nullptr, &warn, &err) && err.empty() &&
-          sink.positions_from_1 && sink.fits && (!to || sink.faces == to->faces);
+  r->ok = tinyobj::LoadObjWithCallback(in, callbacks, &sink, nullptr, &warn, &err) && err.empty();
+  if (r->ok && faces_here) read_faces(body.substr(scan.faces_read_from), sink);
+  r->ok = r->ok && sink.positions_from_1 && sink.fits && (!to || sink.faces == to->faces);
   if (!m.num_face_vertices.empty()) r->shapes.push_back(std::move(shape));
 }
 

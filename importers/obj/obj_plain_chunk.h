@@ -4,6 +4,11 @@
 // false) gives for it behind its state lines: the same floats (the same
 // number parser) and faces, without LoadObj's per-face vectors and shape
 // export (about a third of its time on a large mesh: docs/performance.md).
+// Where every number comes before the first face and every corner is a
+// plain decimal (ChunkScan::faces_read_from), tinyobjloader reads the lines
+// before that face and the faces are read here: an index of 1 to 9 digits
+// without sign or leading zero is what tinyobjloader's atoi makes of it,
+// and the face lines were two thirds of the callback parse's time.
 #pragma once
 
 #include "rayform/importers/obj/obj_chunk_scan.h"

@@ -1,6 +1,7 @@
 // The plain chunks of the chunked OBJ parse (obj_plain_chunk.h): which
-// chunks the scan calls plain, and that the callback parse of one gives,
-// array for array and bit for bit, what tinyobj::LoadObj gives for it.
+// chunks the scan calls plain (and whose faces it lets the parse read
+// itself), and that the parse of one gives, array for array and bit for
+// bit, what tinyobj::LoadObj gives for it.
 #include "rayform/importers/obj/obj_plain_chunk.h"
 #include "rayform/importers/obj/obj_chunk_scan.h"
 #include "rayform/importers/obj/text_stream_buffer.h"
@@ -131,6 +132,75 @@ TEST(ObjPlainChunk, TheCallbackParseGivesWhatLoadObjGives) {
   parse_plain_chunk(vertices, scan_chunk(vertices, 0, vertices.size()), FaceState{}, &fast);
   EXPECT_TRUE(fast.shapes.empty());
   expect_same(fast, load_obj("", vertices), "vertices only");
+}
+
+size_t faces_read_from(const std::string& text) { return scan_chunk(text, 0, text.size()).faces_read_from; }
+
+TEST(ObjPlainChunk, TheScanLetsTheFacesBeReadWhereAllNumbersComeFirst) {
+  // From the first face line on (its offset in the chunk): faces of corners
+  // i, i/j, i//k, i/j/k, comments, blank and unknown lines, tabs, "\r\n".
+  EXPECT_EQ(faces_read_from("v 1 2 3\nvt 0 1\nvn 0 0 1\n  f 1/1/1 2//1 3/1\n# c\n\nf\t1 2 3 4\r\nvp 1\n"), 24u);
+  EXPECT_EQ(faces_read_from("f 123456789 2 3\n"), 0u);
+  const size_t none = ChunkScan::none;
+  // Not read: no face; a v, vt or vn line after the first face; a corner
+  // that is not a decimal from 1 (a position alone too: atoi reads "02",
+  // "3x" and "+1" as tinyobjloader's callbacks do, so they stay with it);
+  // a chunk that is not plain.
+  for (const char* text : {"v 1 2 3\n", "f 1 2 3\nv 1 2 3\n", "f 1 2 3\nvt 0 0\n", "f 1 2 3\nvn 0 0 1\n", "f 1 02 3\n",
+                           "f 1 2 3x\n", "f +1 2 3\n", "f 1 2 3\nf 1 2 # 3\n", "f 0 1 2\n", "f 1 2 1234567890\n",
+                           "s 1\nf 1 2 3\n", "f 1/0/1 2/1/1 3/1/1\n"})
+    EXPECT_EQ(faces_read_from(text), none) << text;
+}
+
+TEST(ObjPlainChunk, FacesReadAfterTheNumbersAreWhatLoadObjGives) {
+  // The grid's numbers, then its cells in every corner style, polygons,
+  // comments and blank lines among them, "\r\n" line ends.
+  std::string body = test::grid_attributes(6);
+  std::string triangles_only = body;
+  for (int y = 0; y + 1 < 6; ++y)
+    for (int x = 0; x + 1 < 6; ++x) {
+      body += test::cell(6, x, y, x + 2 * y);
+      triangles_only += test::cell(6, x, y, x + 2 * y);
+      if ((x + y) % 4 == 0) body += "# between\n\r\nf 1/1 2/2\t8/8 7/7\r\n";
+    }
+  for (const std::string& text : {body, triangles_only}) {
+    const ChunkScan scan = scan_chunk(text, 0, text.size());
+    ASSERT_TRUE(scan.plain);
+    ASSERT_NE(scan.faces_read_from, ChunkScan::none);
+    ChunkParse fast;
+    parse_plain_chunk(text, scan, FaceState{"s", -1, 5}, &fast);
+    expect_same(fast, load_obj("g s\ns 5\n", text), "faces read after the numbers");
+    ASSERT_EQ(fast.shapes.size(), 1u);
+    EXPECT_EQ(fast.shapes[0].mesh.smoothing_group_ids.back(), 5u);
+  }
+  // Into a target: the triangles in place.
+  const ChunkScan scan = scan_chunk(triangles_only, 0, triangles_only.size());
+  const ChunkParse want = load_obj("", triangles_only);
+  ASSERT_EQ(want.shapes.size(), 1u);
+  const tinyobj::mesh_t& w = want.shapes[0].mesh;
+  const size_t faces = w.num_face_vertices.size();
+  std::vector<tinyobj::index_t> corners(3 * faces);
+  std::vector<unsigned char> face_corners(faces);
+  std::vector<int> materials(faces);
+  std::vector<unsigned int> groups(faces);
+  ChunkParse into;
+  parse_plain_chunk_into(triangles_only, scan, FaceState{},
+                         {corners.data(), face_corners.data(), materials.data(), groups.data(), faces}, &into);
+  EXPECT_TRUE(into.ok);
+  ASSERT_EQ(corners.size(), w.indices.size());
+  for (size_t c = 0; c < corners.size(); ++c) {
+    EXPECT_EQ(corners[c].vertex_index, w.indices[c].vertex_index) << c;
+    EXPECT_EQ(corners[c].texcoord_index, w.indices[c].texcoord_index) << c;
+    EXPECT_EQ(corners[c].normal_index, w.indices[c].normal_index) << c;
+  }
+  EXPECT_EQ(face_corners, w.num_face_vertices);
+  EXPECT_EQ(materials, w.material_ids);
+  EXPECT_EQ(groups, w.smoothing_group_ids);
+  EXPECT_TRUE(same_bits(into.attrib.vertices, want.attrib.vertices));
+  // One face too many for the target: refused.
+  parse_plain_chunk_into(triangles_only, scan, FaceState{},
+                         {corners.data(), face_corners.data(), materials.data(), groups.data(), faces - 1}, &into);
+  EXPECT_FALSE(into.ok);
 }
 
 }  // namespace
