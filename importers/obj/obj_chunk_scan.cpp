@@ -9,57 +9,45 @@
 namespace rayform::obj {
 namespace {
 
-// Whether a face corner is i, i/j, i//k or i/j/k, each index a decimal from
-// 1 of at most 9 digits without sign or leading zero.
-bool plain_corner(std::string_view c) {
-  size_t i = 0;
-  auto index = [&] {
-    const size_t start = i;
-    if (i < c.size() && c[i] >= '1' && c[i] <= '9')
-      for (++i; i < c.size() && i - start < 9 && c[i] >= '0' && c[i] <= '9';) ++i;
-    return i > start && (i == c.size() || c[i] == '/');
-  };
-  if (!index()) return false;
-  if (i == c.size()) return true;
-  ++i;                                   // the '/'
-  if (i < c.size() && c[i] == '/') ++i;  // i//k
-  else if (!index()) return false;       // i/j
-  else if (i == c.size()) return true;
-  else ++i;  // i/j/k
-  return index() && i == c.size();
-}
-
 // A face line (after "f "): its number of corners, or 0 when it has a '-',
 // a number of more than 9 digits (atoi could wrap it to a negative index) or
 // more corners than LoadObj's unsigned char count of a face's corners holds.
-// `plain` is cleared where a corner names a uv or normal and is not
-// plain_corner: tinyobjloader's raw triple gives 0 for a field that is not
-// there and for one that reads 0, which LoadObj refuses (a position, always
-// there, the callback parse checks itself). `simple` is cleared where any
-// corner is not plain_corner.
+// A corner is plain when it is i, i/j, i//k or i/j/k, each index a decimal
+// from 1 of at most 9 digits without sign or leading zero. `plain` is
+// cleared where a corner names a uv or normal and is not plain:
+// tinyobjloader's raw triple gives 0 for a field that is not there and for
+// one that reads 0, which LoadObj refuses (a position, always there, the
+// callback parse checks itself). `simple` is cleared where any corner is
+// not plain. One pass over each corner's characters.
 int plain_face_corners(std::string_view s, bool& plain, bool& simple) {
   int corners = 0;
   const size_t n = s.size();
   for (size_t i = 0;; ++corners) {
     while (i < n && is_space(s[i])) ++i;
     if (i == n) break;
-    const size_t start = i;
-    bool slash = false, minus = false;  // the corner names a uv or normal; has a '-'
+    bool slash = false, form = true;  // the corner names a uv or normal; is plain
+    int fields = 1;                   // '/'-separated fields so far
+    size_t digits = 0, run = 0;       // digits of the current field; consecutive digits
     for (; i < n && !is_space(s[i]); ++i) {
-      slash |= s[i] == '/';
-      minus |= s[i] == '-';
+      const char c = s[i];
+      if (c >= '0' && c <= '9') {
+        if (++run > 9) return 0;
+        if (digits++ == 0 && c == '0') form = false;  // a leading zero
+      } else if (c == '/') {
+        run = 0;
+        slash = true;
+        if (fields == 1 && digits == 0) form = false;  // no position
+        if (++fields > 3) form = false;
+        digits = 0;
+      } else {
+        if (c == '-') return 0;
+        run = 0;
+        form = false;
+      }
     }
-    if (minus) return 0;
-    if ((slash && plain) || simple) {
-      const bool form = plain_corner(s.substr(start, i - start));
-      if (slash) plain = plain && form;
-      simple = simple && form;
-    }
-    if (i - start < 10) continue;
-    for (size_t k = start, digits = 0; k < i; ++k) {
-      digits = s[k] >= '0' && s[k] <= '9' ? digits + 1 : 0;
-      if (digits > 9) return 0;
-    }
+    if (digits == 0) form = false;  // the last field empty (the middle one of three may be)
+    if (slash) plain = plain && form;
+    simple = simple && form;
   }
   return corners <= 255 ? corners : 0;
 }

@@ -73,43 +73,40 @@ void face(void* s, tinyobj::index_t* corners, int count) {
 // the parse is refused (and the chunked parse falls back).
 void unexpected_face(void* s, tinyobj::index_t*, int) { static_cast<Sink*>(s)->fits = false; }
 
-// A corner of the form i, i/j, i//k or i/j/k (digits only) as
-// tinyobjloader's raw triple: each index + 1, 0 for none. False for any
-// other form (the scan said there is none).
-bool raw_triple(std::string_view word, tinyobj::index_t* raw) {
-  int field[3] = {0, 0, 0};  // position, uv, normal
-  int f = 0;
-  for (const char c : word) {
-    if (c == '/') {
-      if (++f > 2) return false;
-    } else if (c >= '0' && c <= '9') {
-      field[f] = 10 * field[f] + (c - '0');
-    } else {
-      return false;
-    }
-  }
-  *raw = {field[0], field[2], field[1]};  // index_t: vertex, normal, texcoord
-  return true;
-}
-
-// The face lines of `text` (ChunkScan::faces_read_from on): each face's raw
-// triples to `face`, as tinyobjloader's callback reader hands them.
+// The face lines of `text` (ChunkScan::faces_read_from on: every corner
+// i, i/j, i//k or i/j/k, digits only): each face's raw triples (each index
+// + 1, 0 for none, as tinyobjloader's callback reader hands them) to
+// `face`. Any other corner (the scan said there is none) clears sink.fits.
 void read_faces(std::string_view text, Sink& sink) {
-  std::vector<tinyobj::index_t> corners;
+  tinyobj::index_t corners[255];
   for_each_line(text, 0, text.size(), [&](const Line&, std::string_view t) {
     if (t.size() < 2 || t[0] != 'f' || !is_space(t[1])) return true;
-    corners.clear();
-    for (size_t i = 2; i < t.size();) {
+    int count = 0;
+    for (size_t i = 2;;) {
       while (i < t.size() && is_space(t[i])) ++i;
       if (i == t.size()) break;
-      const size_t start = i;
-      while (i < t.size() && !is_space(t[i])) ++i;
-      if (!raw_triple(t.substr(start, i - start), &corners.emplace_back())) {
+      int field[3] = {0, 0, 0};  // position, uv, normal
+      int f = 0, digits = 0;
+      for (; i < t.size() && !is_space(t[i]); ++i) {
+        const char c = t[i];
+        if (c >= '0' && c <= '9' && digits < 9) {
+          field[f] = 10 * field[f] + (c - '0');
+          ++digits;
+        } else if (c == '/' && f < 2) {
+          ++f;
+          digits = 0;
+        } else {
+          sink.fits = false;
+          return false;
+        }
+      }
+      if (count == 255) {
         sink.fits = false;
         return false;
       }
+      corners[count++] = {field[0], field[2], field[1]};  // index_t: vertex, normal, texcoord
     }
-    face(&sink, corners.data(), int(corners.size()));
+    face(&sink, corners, count);
     return true;
   });
 }
