@@ -347,7 +347,12 @@ class ObjReader {
       const int nkey = n >= 0 ? n : (!per_vertex_normals ? -1 : (options_.flat ? -2 - int(tri.face_of(c / 3)) : -1));
       return obj::CornerKey{ix.vertex_index, corner_uv(ix, uvs_ok), nkey};
     };
-    obj::WeldedVertices welded = obj::weld_vertices(position_count, 3 * triangles, key_of);
+    // Without uvs, written normals and facets a corner's key is its position
+    // alone (what key_of gives then, without its lookups).
+    auto position_key_of = [&](size_t c) { return obj::CornerKey{tri.corner(c).vertex_index, -1, -1}; };
+    obj::WeldedVertices welded = !any_uv && !kinds.any_normal && !options_.flat
+                                     ? obj::weld_vertices(position_count, 3 * triangles, position_key_of)
+                                     : obj::weld_vertices(position_count, 3 * triangles, key_of);
     const size_t vertices = welded.first_corner.size();
     resize_on_present_pages(mesh.positions, vertices);
     if (any_uv) resize_on_present_pages(mesh.uvs, vertices);

@@ -429,6 +429,23 @@ const char* quad_obj =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
 
+// Corners of a position alone (no uv, no written normal) weld by position:
+// one vertex per position used, in the order first used; a corner with a
+// uv is a vertex of its own.
+TEST_F(ObjFiles, PositionOnlyCornersAreVerticesInTheOrderFirstUsed) {
+  const std::string numbers = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nv 1 1 0\nvt 0.5 0.5\n";
+  const Scene plain = read_obj_scene(file("plain.obj", numbers + "f 3 1 2\nf 2 5 3\n"));
+  ASSERT_EQ(plain.meshes.size(), 1u);
+  const Mesh& m = plain.meshes[0];
+  EXPECT_EQ(m.positions, (std::vector<vec3>{{0, 1, 0}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}}));
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 2, 3, 0}));
+  EXPECT_EQ(m.normals.size(), 4u);
+  const Scene uv = read_obj_scene(file("uv.obj", numbers + "f 3 1 2\nf 2/1 5 3\n"));
+  ASSERT_EQ(uv.meshes.size(), 1u);
+  EXPECT_EQ(uv.meshes[0].positions, (std::vector<vec3>{{0, 1, 0}, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}}));
+  EXPECT_EQ(uv.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 0}));
+}
+
 TEST_F(ObjFiles, MaterialsAndTextureOptions) {
   write_file(dir_ / "tex" / "wood.png", "not really a png: decoded at prepare time only");
   std::string mtl =
