@@ -6,7 +6,11 @@
 #include <emmintrin.h>
 #endif
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstring>
 #include <string_view>
@@ -37,19 +41,40 @@ const char* find_line_end(const char* p, size_t n) {
   return nullptr;
 }
 
-// Whether a line "f <blank>..." begins right after a '\n' in the first
-// max_obj_line_bytes bytes. Then no line before it is longer than the bound,
-// and it is a face line: the walk below would stop at it or at an earlier
-// face. One memchr for 'f' over lines of numbers (which hold none).
-bool early_face(std::string_view text) {
-  const char* data = text.data();
-  const size_t n = std::min(text.size(), max_obj_line_bytes);
-  for (size_t p = 1; p + 1 < n;) {
-    const char* f = static_cast<const char*>(std::memchr(data + p, 'f', n - 1 - p));
+// Whether a line "f <blank>..." begins right after a '\n' at some q in
+// [from, to) (1 <= from, to <= n - 1, n the bytes looked at). One memchr for
+// 'f' over lines of numbers (which hold none).
+bool face_line_in(const char* data, size_t from, size_t to) {
+  for (size_t p = from; p < to;) {
+    const char* f = static_cast<const char*>(std::memchr(data + p, 'f', to - p));
     if (!f) return false;
     const size_t q = size_t(f - data);
     if (data[q - 1] == '\n' && blank(data[q + 1])) return true;
     p = q + 1;
+  }
+  return false;
+}
+
+// Whether a line "f <blank>..." begins right after a '\n' in the first
+// max_obj_line_bytes bytes. Then no line before it is longer than the bound,
+// and it is a face line: the walk below would stop at it or at an earlier
+// face. With several threads, waves of a block a thread, in order, until a
+// wave holds one: the answer does not depend on which match is found, and
+// the first touch of the file's pages (most of the time) is shared.
+bool early_face(std::string_view text) {
+  const char* data = text.data();
+  const size_t n = std::min(text.size(), max_obj_line_bytes);
+  if (n < 3) return false;
+  const size_t threads = size_t(tbb::this_task_arena::max_concurrency());
+  constexpr size_t block = size_t(1) << 20;
+  if (threads == 1 || n < 2 * block) return face_line_in(data, 1, n - 1);
+  for (size_t wave = 1; wave < n - 1; wave += threads * block) {
+    std::atomic<bool> found{false};
+    tbb::parallel_for(size_t(0), threads, [&](size_t k) {
+      const size_t from = wave + k * block, to = std::min(n - 1, from + block);
+      if (from < to && face_line_in(data, from, to)) found.store(true, std::memory_order_relaxed);
+    });
+    if (found.load()) return true;
   }
   return false;
 }
