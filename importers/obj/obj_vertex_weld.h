@@ -6,7 +6,8 @@
 //   2. a corner whose key is its position's first corner's key takes that
 //      corner's vertex (most do: a position has one key but at uv seams and
 //      creases); the others look their key up in a map, one after another in
-//      corner order (so the first corner with each key still comes first);
+//      corner order (so the first corner with each key still comes first),
+//      the one thread visiting only the stretches that hold such corners;
 //   3. the corners that come first with their key, numbered in corner order
 //      (base/select_in_order.h), number the vertices.
 #pragma once
@@ -17,6 +18,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -72,16 +74,21 @@ WeldedVertices weld_vertices(size_t positions, size_t corners, const KeyOf& key_
   // key are left for the map, in corner order.
   std::vector<uint32_t> representative;
   resize_on_present_pages(representative, corners);
+  std::vector<uint8_t> left_in((corners + grain - 1) / grain, 0);  // per grain of corners: any left for the map
   each_block(corners, [&](size_t b, size_t e) {
     for (size_t c = b; c < e; ++c) {
       const CornerKey k = key_of(c);
       const uint32_t f = first_at[size_t(k.position)];
       representative[c] = f == c || key_of(f) == k ? f : none;
+      if (representative[c] == none) std::atomic_ref<uint8_t>(left_in[c / grain]).store(1, std::memory_order_relaxed);
     }
   });
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> other_keys;
-  for (size_t c = 0; c < corners; ++c)
-    if (representative[c] == none) representative[c] = other_keys.try_emplace(key_of(c), uint32_t(c)).first->second;
+  for (size_t g = 0; g < left_in.size(); ++g) {
+    if (!left_in[g]) continue;  // nothing to look up there
+    for (size_t c = g * grain; c < std::min(corners, (g + 1) * grain); ++c)
+      if (representative[c] == none) representative[c] = other_keys.try_emplace(key_of(c), uint32_t(c)).first->second;
+  }
   // 3. Vertex numbers: corners that are their own representative, numbered
   // in corner order.
   WeldedVertices w;
