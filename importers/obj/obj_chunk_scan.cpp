@@ -1,11 +1,5 @@
 #include "rayform/importers/obj/obj_chunk_scan.h"
 
-#include <bit>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace rayform::obj {
 namespace {
 
@@ -64,27 +58,10 @@ size_t numbers(std::string_view s) {
   return words;
 }
 
-// The first '\n', '\r' or '\0' in [p, stop) of data, or stop (16 bytes a
-// step with SSE2, as next_line_feed).
-size_t next_line_end_or_nul(const char* data, size_t p, size_t stop) {
-#if defined(__SSE2__)
-  const __m128i lf = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r'), nul = _mm_setzero_si128();
-  for (; p + 16 <= stop; p += 16) {
-    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(data + p));
-    const unsigned hits = unsigned(_mm_movemask_epi8(
-        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, lf), _mm_cmpeq_epi8(x, cr)), _mm_cmpeq_epi8(x, nul))));
-    if (hits) return p + size_t(std::countr_zero(hits));
-  }
-#endif
-  for (; p < stop; ++p)
-    if (data[p] == '\n' || data[p] == '\r' || data[p] == '\0') return p;
-  return stop;
-}
-
 // What decides ChunkScan::faces_read_from, gathered line by line.
 struct FaceLines {
   size_t first = ChunkScan::none;  // the first face line's offset in the chunk
-  bool simple = true;              // every corner so far plain_corner
+  bool simple = true;              // every corner so far plain (plain_face_corners)
   bool numbers_after = false;      // a v, vt or vn line after the first face line
 };
 
@@ -139,7 +116,7 @@ ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
   FaceLines faces;
   const char* data = text.data();
   for (size_t p = begin; p < end;) {
-    const size_t q = next_line_end_or_nul(data, p, end);
+    const size_t q = find_first_byte<'\n', '\r', '\0'>(data, p, end);
     size_t next = q < end ? q + 1 : end;
     if (q < end && data[q] != '\n') {
       if (data[q] != '\r' || q + 1 == end || data[q + 1] != '\n') {
@@ -150,11 +127,7 @@ ChunkScan scan_chunk(std::string_view text, size_t begin, size_t end) {
       next = q + 2;  // "\r\n"
     }
     const Line line{text.substr(p, q - p), p};
-    std::string_view t = line.text;
-    size_t lead = 0;
-    while (lead < t.size() && is_space(t[lead])) ++lead;
-    t.remove_prefix(lead);
-    if (!scan_line(scan, faces, begin, line, t)) return scan;
+    if (!scan_line(scan, faces, begin, line, without_leading_blanks(line.text))) return scan;
     p = next;
   }
   if (scan.plain && faces.simple && !faces.numbers_after) scan.faces_read_from = faces.first;

@@ -6,15 +6,11 @@
 // chunks cannot reproduce (then the whole text is parsed in one piece).
 #pragma once
 
-#include <bit>
+#include "rayform/importers/obj/obj_line_bytes.h"
+
 #include <cstddef>
-#include <cstring>
 #include <string_view>
 #include <vector>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace rayform::obj {
 
@@ -50,41 +46,18 @@ struct ChunkScan {
   size_t faces_read_from = none;
 };
 
-inline bool is_space(char c) { return c == ' ' || c == '\t'; }
-
-// The first '\n' in [p, stop) of data, or stop. Inline, 16 bytes a step
-// (SSE2): lines of numbers are short, and a call of memchr a line costs
-// more than its bytes.
-inline size_t next_line_feed(const char* data, size_t p, size_t stop) {
-#if defined(__SSE2__)
-  const __m128i lf = _mm_set1_epi8('\n');
-  for (; p + 16 <= stop; p += 16) {
-    const unsigned hits =
-        unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(data + p)), lf)));
-    if (hits) return p + size_t(std::countr_zero(hits));
-  }
-#endif
-  for (; p < stop; ++p)
-    if (data[p] == '\n') return p;
-  return stop;
-}
-
 // Calls visit(line, t) for each line of [begin, end) (its '\r\n' or '\n'
 // end taken off), t being the line without its leading blanks, as LoadObj
 // reads it, until visit returns false.
 template <class Visit>
 inline void for_each_line(std::string_view text, size_t begin, size_t end, Visit visit) {
   for (size_t p = begin; p < end;) {
-    const size_t line_end = next_line_feed(text.data(), p, end);
+    const size_t line_end = find_first_byte<'\n'>(text.data(), p, end);
     size_t e = line_end;
     if (e > p && text[e - 1] == '\r') --e;
     const Line line{text.substr(p, e - p), p};
     p = line_end < end ? line_end + 1 : end;
-    std::string_view t = line.text;
-    size_t lead = 0;
-    while (lead < t.size() && is_space(t[lead])) ++lead;
-    t.remove_prefix(lead);
-    if (!visit(line, t)) return;
+    if (!visit(line, without_leading_blanks(line.text))) return;
   }
 }
 

@@ -39,15 +39,15 @@ void texcoord(void* s, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t) {
   v.insert(v.end(), {x, y});
 }
 
-// A face's raw triples: in a plain chunk (ChunkScan::plain) they hold index
-// + 1, 0 for none, which is what LoadObj's fixed indices are plus one, but
-// where a position reads 0.
 // A raw triple as LoadObj's indices (noting a position that read 0).
 tinyobj::index_t fixed(Sink& sink, const tinyobj::index_t& raw) {
   sink.positions_from_1 = sink.positions_from_1 && raw.vertex_index > 0;
   return {raw.vertex_index - 1, raw.normal_index - 1, raw.texcoord_index - 1};
 }
 
+// A face's raw triples: in a plain chunk (ChunkScan::plain) they hold index
+// + 1, 0 for none, which is what LoadObj's fixed indices are plus one, but
+// where a position reads 0.
 void face(void* s, tinyobj::index_t* corners, int count) {
   Sink& sink = *static_cast<Sink*>(s);
   if (const TriangleTarget* to = sink.target) {

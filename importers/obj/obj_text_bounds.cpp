@@ -1,17 +1,13 @@
 #include "rayform/importers/obj/obj_text_bounds.h"
 
 #include "rayform/base/error.h"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "rayform/importers/obj/obj_line_bytes.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cstring>
 #include <string_view>
 
@@ -21,26 +17,6 @@ namespace {
 // Pages walked past without a face are let go in steps of this many bytes.
 constexpr size_t drop_step = size_t(64) << 20;
 
-bool blank(char c) { return c == ' ' || c == '\t'; }
-
-// The first '\n' or '\r' in [p, p + n) (tinyobjloader ends lines at either),
-// or nullptr. One pass for both, 16 bytes a step: lines of numbers are short,
-// and two memchr calls a line cost more than the bytes.
-const char* find_line_end(const char* p, size_t n) {
-  size_t i = 0;
-#if defined(__SSE2__)
-  const __m128i lf = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r');
-  for (; i + 16 <= n; i += 16) {
-    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
-    const unsigned hits = unsigned(_mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi8(x, lf), _mm_cmpeq_epi8(x, cr))));
-    if (hits) return p + i + std::countr_zero(hits);
-  }
-#endif
-  for (; i < n; ++i)
-    if (p[i] == '\n' || p[i] == '\r') return p + i;
-  return nullptr;
-}
-
 // Whether a line "f <blank>..." begins right after a '\n' at some q in
 // [from, to) (1 <= from, to <= n - 1, n the bytes looked at). One memchr for
 // 'f' over lines of numbers (which hold none).
@@ -49,7 +25,7 @@ bool face_line_in(const char* data, size_t from, size_t to) {
     const char* f = static_cast<const char*>(std::memchr(data + p, 'f', to - p));
     if (!f) return false;
     const size_t q = size_t(f - data);
-    if (data[q - 1] == '\n' && blank(data[q + 1])) return true;
+    if (data[q - 1] == '\n' && is_space(data[q + 1])) return true;
     p = q + 1;
   }
   return false;
@@ -89,16 +65,16 @@ void check_obj_text_bounds(const FileBytes& file, const std::string& path) {
   for (size_t p = 0; p < text.size(); ++line) {
     // The line's end: '\n', or a lone '\r' (tinyobjloader ends lines at either).
     const size_t window = std::min(text.size() - p, max_obj_line_bytes + 1);
-    const char* end = find_line_end(data + p, window);
-    const bool cr = end && *end == '\r';
-    const size_t length = end ? size_t(end - (data + p)) : window;
+    const size_t end = find_first_byte<'\n', '\r'>(data, p, p + window);
+    const bool found = end < p + window, cr = found && data[end] == '\r';
+    const size_t length = end - p;
     if (length > max_obj_line_bytes)
       throw Error(path + ":" + std::to_string(line) + ": line longer than " + std::to_string(max_obj_line_bytes) +
                   " bytes (not an OBJ text)");
     size_t t = p;
-    while (t < p + length && blank(data[t])) ++t;
-    if (t + 1 < p + length && data[t] == 'f' && blank(data[t + 1])) return;
-    p += length + (end ? 1 : 0);
+    while (t < p + length && is_space(data[t])) ++t;
+    if (t + 1 < p + length && data[t] == 'f' && is_space(data[t + 1])) return;
+    p += length + (found ? 1 : 0);
     if (cr && p < text.size() && data[p] == '\n') ++p;  // "\r\n" is one line end
     if (p - dropped >= drop_step) {
       file.drop_pages(dropped, p);
